@@ -1,0 +1,125 @@
+// SPDX-License-Identifier: MIT
+// emcv control variates: the coefficient alpha (Eq. 29-31) and the residual policies of the toy experiment
+// (supplementary section 3), shared by emcv-toy and the renderer.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "emcm.hpp"
+#include "moving_stats.hpp"
+
+namespace emcv {
+
+/// alpha* = Cov(F, G) / Var(G), Eq. 31.
+///
+/// Guard: returns 0 when var_g is not above var_floor (this covers 0, negative, NaN and, with the default
+/// floor of the smallest normal number, subnormal variances), when cov_fg is not finite, or when the quotient
+/// overflows. alpha = 0 means "no control variate": the residual is then f itself, whose variance can only
+/// over-state what the adaptive sampler needs, never under-state it. A meaningless coefficient divided out of
+/// a vanishing variance would do the opposite. Callers whose G has a known scale pass a relative floor,
+/// for example (1e-6 * |E[G]|)^2, see variance_floor().
+template <class T>
+T cv_coefficient(T cov_fg, T var_g, T var_floor = std::numeric_limits<T>::min()) noexcept {
+    if (!(var_g > var_floor) || !std::isfinite(var_g) || !std::isfinite(cov_fg)) return T(0);
+    const T alpha = cov_fg / var_g;
+    return std::isfinite(alpha) ? alpha : T(0);
+}
+
+/// A variance floor relative to the control's scale: (relative * |mean_g|)^2, at least the smallest normal.
+template <class T>
+T variance_floor(T mean_g, T relative) noexcept {
+    const T s = relative * std::fabs(mean_g);
+    const T f = s * s;
+    return f > std::numeric_limits<T>::min() ? f : std::numeric_limits<T>::min();
+}
+
+/// Control-variate residual r = f - alpha * g' = <F - alpha G>, the quantity whose variance drives sampling.
+template <class T>
+T cv_residual(T f, T alpha, T g) noexcept {
+    return f - alpha * g;
+}
+
+/// The residuals compared in the paper's toy experiment (PAPER.md section 3, Table 1). In every policy the
+/// coefficient applied to frame t comes from frames up to t - 1.
+enum class residual_policy {
+    none,              ///< Res_f = fbar: no control variate, alpha = 0
+    single_frame,      ///< Res_SF = fbar - alpha_SF gbar, alpha_SF from the previous frame's samples alone
+    single_frame_ema,  ///< Res_SF+EMA: as single_frame with alpha_SF smoothed by an exponential moving average
+    emcm_sampled,      ///< Res_EMCM = fbar - alpha_EMCM gbar, alpha from an EMCM over (fbar, gbar) per frame
+    emcm_constant,     ///< ResHat_EMCM = fbar - alpha_EMCM G: same EMCM, in-frame constant control G = E[g]
+};
+
+/// What one frame contributes, per pixel.
+template <class T>
+struct cv_frame {
+    T f = T(0);           ///< frame mean of f (fbar)
+    T g = T(0);           ///< frame mean of the sampled control (gbar); G itself where g is not sampled
+    T g_expected = T(0);  ///< the control's known mean G(t), the in-frame constant (Eq. 38)
+    T cov_fg = T(0);      ///< in-frame covariance of the per-sample (f, g) pairs (single-frame policies)
+    T var_g = T(0);       ///< in-frame variance of the per-sample g (single-frame policies)
+};
+
+/// One pixel's control variate under a residual policy.
+///   r_t = residual(frame_t)   uses alpha_{t-1}
+///   update(frame_t)           advances alpha to alpha_t
+template <class T>
+class control_variate {
+public:
+    /// @param eta_cov   EMCM weight over frames (emcm_* policies), the paper uses 0.05
+    /// @param eta_alpha EMA weight that smooths alpha_SF (single_frame_ema); the paper leaves it open
+    explicit control_variate(residual_policy policy, T eta_cov = T(0.05), T eta_alpha = T(0.05))
+        : policy_(policy), cov_(eta_cov), alpha_ema_(eta_alpha) {}
+
+    residual_policy policy() const noexcept { return policy_; }
+    /// Coefficient that the next residual() applies; 0 until a frame has been seen.
+    T alpha() const noexcept { return alpha_; }
+    /// The EMCM over (f, g) frame means (meaningful for the emcm_* policies).
+    const emcm<T, 2>& frame_covariance() const noexcept { return cov_; }
+
+    T residual(const cv_frame<T>& fr) const noexcept {
+        switch (policy_) {
+            case residual_policy::none: return fr.f;
+            case residual_policy::emcm_constant: return cv_residual(fr.f, alpha_, fr.g_expected);
+            default: return cv_residual(fr.f, alpha_, fr.g);
+        }
+    }
+
+    void update(const cv_frame<T>& fr) {
+        switch (policy_) {
+            case residual_policy::none: break;
+            case residual_policy::single_frame: alpha_ = cv_coefficient(fr.cov_fg, fr.var_g); break;
+            case residual_policy::single_frame_ema:
+                alpha_ema_.push(cv_coefficient(fr.cov_fg, fr.var_g));
+                alpha_ = alpha_ema_.mean();
+                break;
+            case residual_policy::emcm_sampled:
+            case residual_policy::emcm_constant:
+                cov_.push({fr.f, fr.g});
+                alpha_ = cv_coefficient(cov_.covariance(0, 1), cov_.variance(1));
+                break;
+        }
+    }
+
+    /// residual() then update(): the residual of frame t with alpha_{t-1}.
+    T push(const cv_frame<T>& fr) {
+        const T r = residual(fr);
+        update(fr);
+        return r;
+    }
+
+    void reset() noexcept {
+        alpha_ = T(0);
+        cov_.reset();
+        alpha_ema_.reset();
+    }
+
+private:
+    residual_policy policy_;
+    T alpha_ = T(0);
+    emcm<T, 2> cov_;
+    moving_stats<T> alpha_ema_;
+};
+
+}  // namespace emcv

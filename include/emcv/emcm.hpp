@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: MIT
+// emcv::emcm — exponential moving covariance matrix (supp. Eq. 21).
+#pragma once
+
+#include "weighted_covariance.hpp"
+
+namespace emcv {
+namespace detail {
+
+template <class T>
+T checked_eta(T eta, const char* where) {
+    require(eta > T(0) && eta <= T(1), where, "eta must lie in (0, 1]");
+    return eta;
+}
+
+/// Shared body of the exponential moving estimators: the weighted recurrence with geometric weights
+/// w_{n,i} = (1 - eta)^{n-i} eta (Eq. 18), W == 1, and the first sample seeding the mean with Cov_0 = 0.
+template <class T, std::size_t N, comoment_form Form>
+class exponential_moving : private weighted_covariance<T, N> {
+    using base = weighted_covariance<T, N>;
+
+public:
+    using typename base::matrix_type;
+    using typename base::state_type;
+    using typename base::value_type;
+    using typename base::vector_type;
+    static constexpr std::size_t dimension = N;
+
+    explicit exponential_moving(T eta) : eta_(checked_eta(eta, "exponential_moving")) {}
+    exponential_moving(T eta, const state_type& s) : base(s), eta_(checked_eta(eta, "exponential_moving")) {}
+
+    /// First sample: mu = x, Cov = 0 (r = 1). Later: r = eta, i.e. weight eta and decay 1 - eta.
+    /// Returns false (state unchanged, rejected() + 1) when x is not finite.
+    bool push(const vector_type& x) {
+        return base::count() == 0 ? base::push_normalised(x, T(1), comoment_form::current_mean)
+                                  : base::push_normalised(x, eta_, Form);
+    }
+    template <class V, class = std::enable_if_t<detail::is_vector_like<V, N>::value>>
+    bool push(const V& x) { return push(detail::to_array<T, N>(x)); }
+    template <std::size_t M = N, class = std::enable_if_t<M == 1>>
+    bool push(T x) { return push(vector_type{x}); }
+
+    T eta() const noexcept { return eta_; }
+    using base::count;
+    using base::covariance;
+    using base::covariance_matrix;
+    using base::mean;
+    using base::rejected;
+    using base::reset;
+    using base::state;
+    using base::total_weight;
+    using base::variance;
+
+private:
+    T eta_;
+};
+
+}  // namespace detail
+
+/// Exponential moving covariance matrix, supp. Eq. 21:
+///     Cov_n = (1 - eta) (Cov_{n-1} + eta d d^T),  d = x_n - mu_{n-1},   mu_n = mu_{n-1} + eta d
+/// It is exactly the covariance about the current mean under geometric weights (Eq. 24), so in steady state
+/// on i.i.d. samples E[Cov] = 2 (1 - eta) / (2 - eta) Var (docs/estimators.md).
+template <class T, std::size_t N>
+class emcm : public detail::exponential_moving<T, N, comoment_form::current_mean> {
+    using base = detail::exponential_moving<T, N, comoment_form::current_mean>;
+
+public:
+    using base::base;
+};
+
+}  // namespace emcv

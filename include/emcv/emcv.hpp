@@ -1,0 +1,14 @@
+// SPDX-License-Identifier: MIT
+// emcv — streaming estimators for real-time Monte Carlo subsurface control variates (Xie & Olano 2021).
+// Umbrella header: every public name of the library.
+#pragma once
+
+#include "version.hpp"
+#include "weighted_covariance.hpp"
+#include "running_covariance.hpp"
+#include "emcm.hpp"
+#include "ewma_covariance.hpp"
+#include "moving_stats.hpp"
+#include "control_variate.hpp"
+#include "batch_means.hpp"
+#include "sample_count.hpp"

@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: MIT
+// emcv::running_covariance — cumulative (Welford) mean and covariance: weighted_covariance with w = 1, decay = 1.
+#pragma once
+
+#include "weighted_covariance.hpp"
+
+namespace emcv {
+
+/// Cumulative mean and covariance of every sample so far (Welford 1962): the recurrence of
+/// weighted_covariance with weight 1 and decay 1, so r = 1/n.
+template <class T, std::size_t N>
+class running_covariance : private weighted_covariance<T, N> {
+    using base = weighted_covariance<T, N>;
+
+public:
+    using typename base::matrix_type;
+    using typename base::state_type;
+    using typename base::value_type;
+    using typename base::vector_type;
+    static constexpr std::size_t dimension = N;
+
+    running_covariance() = default;
+    explicit running_covariance(const state_type& s) : base(s) {}
+
+    /// Adds one sample; returns false (state unchanged, rejected() + 1) when it is not finite.
+    bool push(const vector_type& x) { return base::push(x); }
+    template <class V, class = std::enable_if_t<detail::is_vector_like<V, N>::value>>
+    bool push(const V& x) { return base::push(detail::to_array<T, N>(x)); }
+    template <std::size_t M = N, class = std::enable_if_t<M == 1>>
+    bool push(T x) { return base::push(vector_type{x}); }
+
+    using base::count;
+    using base::covariance_matrix;
+    using base::mean;
+    using base::rejected;
+    using base::reset;
+    using base::state;
+    using base::total_weight;
+
+    /// Population (biased) covariance: sum (x - mean)(y - mean) / n.
+    T covariance(std::size_t i, std::size_t j) const noexcept { return base::covariance(i, j); }
+    T variance(std::size_t i) const noexcept { return base::variance(i); }
+
+    /// Unbiased sample covariance: sum (x - mean)(y - mean) / (n - 1); 0 while n < 2.
+    T sample_covariance(std::size_t i, std::size_t j) const noexcept {
+        const auto n = base::count();
+        return n < 2 ? T(0) : base::covariance(i, j) * (static_cast<T>(n) / static_cast<T>(n - 1));
+    }
+    T sample_variance(std::size_t i) const noexcept { return sample_covariance(i, i); }
+};
+
+}  // namespace emcv

@@ -1,0 +1,159 @@
+// SPDX-License-Identifier: MIT
+// emcv::weighted_covariance — the one streaming recurrence every estimator of emcv is built on.
+//
+// REFERENCES  Xie & Olano 2021, supplementary section 1: variable-weight covariance (Eq. 17, Finch 2009
+//             generalised), weighted means (Eq. 1), covariance about the current mean (Eq. 24).
+//
+// With decay = (W_n - w_n) / W_{n-1} and w = w_n, the total weight is W_n = decay * W_{n-1} + w, and with
+// r = w / W_n and d = x_n - mu_{n-1}:
+//     mu_n  = mu_{n-1} + r d                                   (Eq. 1 as a recurrence)
+//     Cov_n = (1 - r) (Cov_{n-1} + r d d^T)                    (supp. Eq. 17 divided by W_n)
+// Eq. 17 writes S_n = W_n Cov_n with the asymmetric product (y_n - nu_n)(x_n - mu_{n-1}); since
+// x_n - mu_n = (1 - r) d the two are equal, and the symmetric form keeps every variance >= 0 and every
+// matrix exactly symmetric in floating point. The normalised covariance is stored (not S_n), so the state
+// has the scale of the data for any stream length and can live in a half-float texture.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "detail/common.hpp"
+
+namespace emcv {
+
+/// Which of the two comoment updates a step uses.
+enum class comoment_form {
+    current_mean,   ///< exact weighted covariance about the current mean (Eq. 17/21/24)
+    previous_mean,  ///< first term of the expansion only, about the previous mean (EWMA, Eq. 22)
+};
+
+/// Streaming weighted mean and covariance matrix of N-dimensional samples.
+///
+/// Non-finite samples (any component NaN or +-Inf) are rejected: the state is left unchanged, `rejected()`
+/// counts them and push() returns false. This is the one NaN/Inf policy of the whole library.
+/// Invalid arguments (negative or non-finite weight, decay outside [0, 1]) throw std::invalid_argument.
+template <class T, std::size_t N>
+class weighted_covariance {
+    static_assert(std::is_floating_point<T>::value, "emcv estimators need a floating-point scalar T");
+    static_assert(N >= 1, "dimension must be at least 1");
+
+public:
+    using value_type = T;
+    using vector_type = std::array<T, N>;
+    using matrix_type = std::array<std::array<T, N>, N>;
+    static constexpr std::size_t dimension = N;
+    static constexpr std::size_t packed_size = N * (N + 1) / 2;
+
+    /// The whole estimator state, in the units of the data (what a history texture stores).
+    struct state_type {
+        std::uint64_t count = 0;     ///< accepted samples
+        std::uint64_t rejected = 0;  ///< non-finite samples that were refused
+        T total_weight = T(0);       ///< W_n
+        vector_type mean{};          ///< mu_n
+        std::array<T, packed_size> covariance{};  ///< Cov_n, packed upper triangle, row-major
+    };
+
+    weighted_covariance() = default;
+    /// Restores a saved (for example, quantised) state.
+    explicit weighted_covariance(const state_type& s) : s_(s) {}
+
+    /// Adds x with weight w after scaling every earlier weight by decay.
+    /// @param [in] x      the sample
+    /// @param [in] weight w_{n,n} >= 0
+    /// @param [in] decay  in [0, 1]: 1 keeps old samples at full weight, 0 forgets them
+    /// @returns false (and leaves the state untouched) when x is not finite.
+    bool push(const vector_type& x, T weight = T(1), T decay = T(1)) {
+        detail::require(std::isfinite(weight) && weight >= T(0), "weighted_covariance::push",
+                        "weight must be finite and >= 0");
+        detail::require(decay >= T(0) && decay <= T(1), "weighted_covariance::push", "decay must lie in [0, 1]");
+        if (!detail::all_finite(x)) {
+            ++s_.rejected;
+            return false;
+        }
+        const T w_total = decay * s_.total_weight + weight;
+        ++s_.count;
+        if (!(w_total > T(0))) {  // every weight is zero: the estimator holds nothing
+            s_.total_weight = T(0);
+            s_.mean = vector_type{};
+            s_.covariance = {};
+            return true;
+        }
+        s_.total_weight = w_total;
+        step(x, weight / w_total, comoment_form::current_mean);
+        return true;
+    }
+
+    /// Same, for glm::vec<N, T> or any type with static length() == N and operator[].
+    template <class V, class = std::enable_if_t<detail::is_vector_like<V, N>::value>>
+    bool push(const V& x, T weight = T(1), T decay = T(1)) {
+        return push(detail::to_array<T, N>(x), weight, decay);
+    }
+
+    /// Scalar convenience for N == 1.
+    template <std::size_t M = N, class = std::enable_if_t<M == 1>>
+    bool push(T x, T weight = T(1), T decay = T(1)) {
+        return push(vector_type{x}, weight, decay);
+    }
+
+    std::uint64_t count() const noexcept { return s_.count; }
+    std::uint64_t rejected() const noexcept { return s_.rejected; }
+    T total_weight() const noexcept { return s_.total_weight; }
+    const vector_type& mean() const noexcept { return s_.mean; }
+    T mean(std::size_t i) const noexcept { return s_.mean[i]; }
+
+    /// Weighted covariance about the current mean (Eq. 24 divided by W_n); 0 before any sample.
+    T covariance(std::size_t i, std::size_t j) const noexcept {
+        return s_.covariance[detail::packed_index(i, j, N)];
+    }
+    T variance(std::size_t i) const noexcept { return covariance(i, i); }
+    matrix_type covariance_matrix() const noexcept {
+        matrix_type m{};
+        for (std::size_t i = 0; i < N; ++i)
+            for (std::size_t j = 0; j < N; ++j) m[i][j] = covariance(i, j);
+        return m;
+    }
+
+    const state_type& state() const noexcept { return s_; }
+    void reset() noexcept { s_ = state_type{}; }
+
+protected:
+    /// The recurrence itself, given r = w_n / W_n in [0, 1] (the caller keeps W_n).
+    ///   mu_n = mu_{n-1} + r d,  d = x - mu_{n-1}
+    ///   current_mean:  Cov_n = (1 - r)(Cov_{n-1} + r d d^T)        supp. Eq. 17 / Eq. 21
+    ///   previous_mean: Cov_n = (1 - r) Cov_{n-1} + r d d^T         Eq. 22 (EWMA)
+    void step(const vector_type& x, T r, comoment_form form) noexcept {
+        vector_type d;
+        for (std::size_t i = 0; i < N; ++i) {
+            d[i] = x[i] - s_.mean[i];
+            s_.mean[i] += r * d[i];
+        }
+        const T keep = T(1) - r;
+        std::size_t k = 0;
+        for (std::size_t i = 0; i < N; ++i) {
+            for (std::size_t j = i; j < N; ++j, ++k) {
+                T& c = s_.covariance[k];
+                if (form == comoment_form::current_mean)
+                    c = keep * (c + r * d[i] * d[j]);
+                else
+                    c = keep * c + r * d[i] * d[j];
+            }
+        }
+    }
+
+    /// Pushes with a fixed ratio r = w / W and W kept at 1 (exponential moving estimators).
+    bool push_normalised(const vector_type& x, T r, comoment_form form) {
+        if (!detail::all_finite(x)) {
+            ++s_.rejected;
+            return false;
+        }
+        ++s_.count;
+        s_.total_weight = T(1);
+        step(x, r, form);
+        return true;
+    }
+
+    state_type s_{};
+};
+
+}  // namespace emcv
