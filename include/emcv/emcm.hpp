@@ -15,7 +15,7 @@ T checked_eta(T eta, const char* where) {
 
 /// Shared body of the exponential moving estimators: the weighted recurrence with geometric weights
 /// w_{n,i} = (1 - eta)^{n-i} eta (Eq. 18), W == 1, and the first sample seeding the mean with Cov_0 = 0.
-template <class T, std::size_t N, comoment_form Form>
+template <class T, std::size_t N, comoment_form Form, mean_accuracy Accuracy = mean_accuracy::plain>
 class exponential_moving : private weighted_covariance<T, N> {
     using base = weighted_covariance<T, N>;
 
@@ -32,8 +32,8 @@ public:
     /// First sample: mu = x, Cov = 0 (r = 1). Later: r = eta, i.e. weight eta and decay 1 - eta.
     /// Returns false (state unchanged, rejected() + 1) when x is not finite.
     bool push(const vector_type& x) {
-        return base::count() == 0 ? base::push_normalised(x, T(1), comoment_form::current_mean)
-                                  : base::push_normalised(x, eta_, Form);
+        return base::count() == 0 ? base::template push_normalised<Accuracy>(x, T(1), comoment_form::current_mean)
+                                  : base::template push_normalised<Accuracy>(x, eta_, Form);
     }
     template <class V, class = std::enable_if_t<detail::is_vector_like<V, N>::value>>
     bool push(const V& x) { return push(detail::to_array<T, N>(x)); }
@@ -64,6 +64,17 @@ private:
 template <class T, std::size_t N>
 class emcm : public detail::exponential_moving<T, N, comoment_form::current_mean> {
     using base = detail::exponential_moving<T, N, comoment_form::current_mean>;
+
+public:
+    using base::base;
+};
+
+/// emcm with a compensated (two-term) mean: the same recurrence (supp. Eq. 21), with the rounding error of
+/// every mean update kept in state_type::mean_compensation (docs/numerics.md).
+template <class T, std::size_t N>
+class compensated_emcm
+    : public detail::exponential_moving<T, N, comoment_form::current_mean, mean_accuracy::compensated> {
+    using base = detail::exponential_moving<T, N, comoment_form::current_mean, mean_accuracy::compensated>;
 
 public:
     using base::base;

@@ -5,11 +5,12 @@
 #include "weighted_covariance.hpp"
 
 namespace emcv {
+namespace detail {
 
-/// Cumulative mean and covariance of every sample so far (Welford 1962): the recurrence of
-/// weighted_covariance with weight 1 and decay 1, so r = 1/n.
-template <class T, std::size_t N>
-class running_covariance : private weighted_covariance<T, N> {
+/// Shared body of the cumulative estimators: the recurrence of weighted_covariance with weight 1 and
+/// decay 1, so r = 1/n (taken from the exact integer count).
+template <class T, std::size_t N, mean_accuracy Accuracy>
+class cumulative_covariance : private weighted_covariance<T, N> {
     using base = weighted_covariance<T, N>;
 
 public:
@@ -19,15 +20,15 @@ public:
     using typename base::vector_type;
     static constexpr std::size_t dimension = N;
 
-    running_covariance() = default;
-    explicit running_covariance(const state_type& s) : base(s) {}
+    cumulative_covariance() = default;
+    explicit cumulative_covariance(const state_type& s) : base(s) {}
 
     /// Adds one sample; returns false (state unchanged, rejected() + 1) when it is not finite.
-    bool push(const vector_type& x) { return base::push(x); }
+    bool push(const vector_type& x) { return base::template push_counted<Accuracy>(x); }
     template <class V, class = std::enable_if_t<detail::is_vector_like<V, N>::value>>
-    bool push(const V& x) { return base::push(detail::to_array<T, N>(x)); }
+    bool push(const V& x) { return push(detail::to_array<T, N>(x)); }
     template <std::size_t M = N, class = std::enable_if_t<M == 1>>
-    bool push(T x) { return base::push(vector_type{x}); }
+    bool push(T x) { return push(vector_type{x}); }
 
     using base::count;
     using base::covariance_matrix;
@@ -47,6 +48,28 @@ public:
         return n < 2 ? T(0) : base::covariance(i, j) * (static_cast<T>(n) / static_cast<T>(n - 1));
     }
     T sample_variance(std::size_t i) const noexcept { return sample_covariance(i, i); }
+};
+
+}  // namespace detail
+
+/// Cumulative mean and covariance of every sample so far (Welford 1962): the recurrence of
+/// weighted_covariance with weight 1 and decay 1, so r = 1/n.
+template <class T, std::size_t N>
+class running_covariance : public detail::cumulative_covariance<T, N, mean_accuracy::plain> {
+    using base = detail::cumulative_covariance<T, N, mean_accuracy::plain>;
+
+public:
+    using base::base;
+};
+
+/// running_covariance with a compensated (two-term) mean: same recurrence, the mean's rounding error is
+/// carried in state_type::mean_compensation (docs/numerics.md, docs/accuracy-vs-time.md).
+template <class T, std::size_t N>
+class compensated_running_covariance : public detail::cumulative_covariance<T, N, mean_accuracy::compensated> {
+    using base = detail::cumulative_covariance<T, N, mean_accuracy::compensated>;
+
+public:
+    using base::base;
 };
 
 }  // namespace emcv

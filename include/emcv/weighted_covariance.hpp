@@ -15,8 +15,10 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 
 #include "detail/common.hpp"
 
@@ -28,11 +30,31 @@ enum class comoment_form {
     previous_mean,  ///< first term of the expansion only, about the previous mean (EWMA, Eq. 22)
 };
 
+/// How the mean is accumulated (docs/numerics.md): `plain` stores mu_n in T; `compensated` also stores the
+/// rounding error of every mean update in state_type::mean_compensation (a Neumaier-style two-term mean),
+/// so a large offset against a small spread no longer costs digits of the covariance.
+enum class mean_accuracy { plain, compensated };
+
+namespace detail {
+
+/// Error-free sum (Knuth TwoSum): s + e == a + b exactly, s = fl(a + b).
+template <class T>
+void two_sum(T a, T b, T& s, T& e) noexcept {
+    s = a + b;
+    const T b_virtual = s - a;
+    e = (a - (s - b_virtual)) + (b - b_virtual);
+}
+
+}  // namespace detail
+
 /// Streaming weighted mean and covariance matrix of N-dimensional samples.
 ///
 /// Non-finite samples (any component NaN or +-Inf) are rejected: the state is left unchanged, `rejected()`
 /// counts them and push() returns false. This is the one NaN/Inf policy of the whole library.
 /// Invalid arguments (negative or non-finite weight, decay outside [0, 1]) throw std::invalid_argument.
+/// Range policy (docs/numerics.md): the mean never overflows (an overflowing difference switches to the
+/// convex form (1 - r) mu + r x) and a covariance beyond the largest finite T saturates at +-max, so the
+/// state stays finite for every finite input.
 template <class T, std::size_t N>
 class weighted_covariance {
     static_assert(std::is_floating_point<T>::value, "emcv estimators need a floating-point scalar T");
@@ -52,11 +74,27 @@ public:
         T total_weight = T(0);       ///< W_n
         vector_type mean{};          ///< mu_n
         std::array<T, packed_size> covariance{};  ///< Cov_n, packed upper triangle, row-major
+        vector_type mean_compensation{};  ///< low part of mu_n (mean_accuracy::compensated only; else 0)
     };
 
     weighted_covariance() = default;
     /// Restores a saved (for example, quantised) state.
-    explicit weighted_covariance(const state_type& s) : s_(s) {}
+    /// Throws std::invalid_argument when the state is not finite (a half-float texture that overflowed to
+    /// Inf), has a negative total weight or a negative variance: a poisoned history is refused, never used.
+    explicit weighted_covariance(const state_type& s) : s_(s) {
+        detail::require(valid_state(s), "weighted_covariance",
+                        "restored state must be finite, with total_weight >= 0 and every variance >= 0");
+    }
+
+    /// True when s is a state this class could have produced: finite, W >= 0, variances >= 0.
+    static bool valid_state(const state_type& s) noexcept {
+        if (!std::isfinite(s.total_weight) || s.total_weight < T(0)) return false;
+        if (!detail::all_finite(s.mean) || !detail::all_finite(s.mean_compensation)) return false;
+        if (!detail::all_finite(s.covariance)) return false;
+        for (std::size_t i = 0; i < N; ++i)
+            if (s.covariance[detail::packed_index(i, i, N)] < T(0)) return false;
+        return true;
+    }
 
     /// Adds x with weight w after scaling every earlier weight by decay.
     /// @param [in] x      the sample
@@ -76,6 +114,7 @@ public:
         if (!(w_total > T(0))) {  // every weight is zero: the estimator holds nothing
             s_.total_weight = T(0);
             s_.mean = vector_type{};
+            s_.mean_compensation = vector_type{};
             s_.covariance = {};
             return true;
         }
@@ -120,28 +159,55 @@ public:
 protected:
     /// The recurrence itself, given r = w_n / W_n in [0, 1] (the caller keeps W_n).
     ///   mu_n = mu_{n-1} + r d,  d = x - mu_{n-1}
-    ///   current_mean:  Cov_n = (1 - r)(Cov_{n-1} + r d d^T)        supp. Eq. 17 / Eq. 21
-    ///   previous_mean: Cov_n = (1 - r) Cov_{n-1} + r d d^T         Eq. 22 (EWMA)
+    ///   current_mean:  Cov_n = (1 - r) Cov_{n-1} + r (1 - r) d d^T     supp. Eq. 17 / Eq. 21
+    ///   previous_mean: Cov_n = (1 - r) Cov_{n-1} + r d d^T             Eq. 22 (EWMA)
+    /// The product is formed as ((coef d_i) d_j) so that r = 1 (a first sample) gives exactly 0 even when d^2
+    /// overflows, and d_i d_i >= 0 keeps every variance >= 0. With Accuracy == compensated the mean is the
+    /// unevaluated sum mean + mean_compensation, and d is taken against both parts (docs/numerics.md).
+    template <mean_accuracy Accuracy = mean_accuracy::plain>
     void step(const vector_type& x, T r, comoment_form form) noexcept {
+        constexpr T largest = std::numeric_limits<T>::max();
+        const T keep = T(1) - r;
         vector_type d;
         for (std::size_t i = 0; i < N; ++i) {
-            d[i] = x[i] - s_.mean[i];
-            s_.mean[i] += r * d[i];
+            T& mu = s_.mean[i];
+            if (Accuracy == mean_accuracy::compensated) {
+                T& low = s_.mean_compensation[i];
+                d[i] = (x[i] - mu) - low;
+                if (std::fabs(d[i]) <= largest) {
+                    T sum, error;
+                    detail::two_sum(mu, r * d[i], sum, error);  // sum + error == mu + r d exactly
+                    const T low_new = low + error;
+                    mu = sum + low_new;                          // renormalise: |low| <= ulp(mu) / 2
+                    low = low_new - (mu - sum);
+                    continue;
+                }
+                low = T(0);
+            } else {
+                d[i] = x[i] - mu;
+                if (std::fabs(d[i]) <= largest) {
+                    mu += r * d[i];
+                    continue;
+                }
+            }
+            // x and mu of opposite signs near the top of the range: x - mu overflowed. The convex form cannot
+            // overflow; the comoment it feeds is beyond the range anyway and saturates below.
+            mu = keep * mu + r * x[i];
+            d[i] = std::copysign(largest, d[i]);
         }
-        const T keep = T(1) - r;
+        const T coef = form == comoment_form::current_mean ? keep * r : r;
         std::size_t k = 0;
         for (std::size_t i = 0; i < N; ++i) {
             for (std::size_t j = i; j < N; ++j, ++k) {
                 T& c = s_.covariance[k];
-                if (form == comoment_form::current_mean)
-                    c = keep * (c + r * d[i] * d[j]);
-                else
-                    c = keep * c + r * d[i] * d[j];
+                c = keep * c + (coef * d[i]) * d[j];
+                c = c > largest ? largest : (c < -largest ? -largest : c);  // saturate, never store Inf
             }
         }
     }
 
     /// Pushes with a fixed ratio r = w / W and W kept at 1 (exponential moving estimators).
+    template <mean_accuracy Accuracy = mean_accuracy::plain>
     bool push_normalised(const vector_type& x, T r, comoment_form form) {
         if (!detail::all_finite(x)) {
             ++s_.rejected;
@@ -149,7 +215,21 @@ protected:
         }
         ++s_.count;
         s_.total_weight = T(1);
-        step(x, r, form);
+        step<Accuracy>(x, r, form);
+        return true;
+    }
+
+    /// Pushes with weight 1 and decay 1 (cumulative estimators): r = 1 / n from the exact integer count, so
+    /// the ratio never stalls where a float total weight would (W + 1 == W beyond 2^24 in float).
+    template <mean_accuracy Accuracy = mean_accuracy::plain>
+    bool push_counted(const vector_type& x) {
+        if (!detail::all_finite(x)) {
+            ++s_.rejected;
+            return false;
+        }
+        ++s_.count;
+        s_.total_weight = static_cast<T>(s_.count);
+        step<Accuracy>(x, T(1) / s_.total_weight, comoment_form::current_mean);
         return true;
     }
 

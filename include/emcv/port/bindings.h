@@ -1,0 +1,28 @@
+// SPDX-License-Identifier: MIT
+// emcv/port/bindings.h — binding slots and workgroup sizes shared by the host (C++) and the shaders (GLSL),
+// FidelityFX `_resources.h` pattern: both sides read the same numbers from one place.
+//
+// ABOUT      Binding numbers are unique across resource types, so the same GLSL also validates for Vulkan,
+//            where uniform and storage buffers share one binding space per descriptor set.
+//            EMCV_LAYOUT_BINDING(b) expands to `binding = b` for OpenGL and to `set = 0, binding = b` under
+//            Vulkan (glslang defines VULKAN for -V targets). Shaders use no loose (non-block) uniforms.
+#ifndef EMCV_PORT_BINDINGS_H
+#define EMCV_PORT_BINDINGS_H
+
+#define EMCV_WORKGROUP_SIZE_X 64
+
+// tests/gpu parity shader (shaders/tests/port_parity.comp.glsl)
+#define EMCV_BINDING_PARITY_PARAMS 0  // uniform block: stream parameters
+#define EMCV_BINDING_PARITY_INPUT 1   // storage buffer: per-pixel stream description (vec4 per pixel)
+#define EMCV_BINDING_PARITY_OUTPUT 2  // storage buffer: per-pixel results (EMCV_PARITY_OUTPUT_VEC4S vec4s)
+#define EMCV_PARITY_OUTPUT_VEC4S 4
+
+#ifndef __cplusplus
+#if defined(VULKAN)
+#define EMCV_LAYOUT_BINDING(b) set = 0, binding = b
+#else
+#define EMCV_LAYOUT_BINDING(b) binding = b
+#endif
+#endif  // #ifndef __cplusplus
+
+#endif  // #ifndef EMCV_PORT_BINDINGS_H

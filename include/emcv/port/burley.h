@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: MIT
+// emcv/port/burley.h — Burley normalized diffusion: profile, radial pdf, CDF and radius sampling, in the
+// shared C++/GLSL dialect (fp32).
+//
+// ABOUT      Per colour channel with shape distance d = l / s(A) > 0 (PAPER.md section 4, reference/sss.md 1):
+//                R(r)   = (e^{-r/d} + e^{-r/(3d)}) / (8 pi d r)          area profile, integral R 2 pi r dr = 1
+//                p(r)   = (e^{-r/d} + e^{-r/(3d)}) / (4 d)               radial pdf, p = 2 pi r R
+//                F(r)   = 1 - e^{-r/d} / 4 - 3 e^{-r/(3d)} / 4           CDF
+//                F^-1(u): u' = 1 - u, G = 1 + 4 u' (2 u' + sqrt(1 + 4 u'^2)),
+//                         r = 3 d ln((1 + G^{1/3} + G^{-1/3}) / (4 u'))  exact closed form (Golubev)
+//                SPVG:    r ~ d (2 + (c - 2) u) (-ln(1 - u)), c = 2.5715 (SPVG 2020; Unreal ships c = 2.6)
+//            The approximation is only a sampling strategy: evaluate the exact pdf at the radius it returns.
+// USAGE      float r = emcv_burley_sample_exact(u, d); float w = emcv_burley_profile_r(r, d) / emcv_burley_pdf(r, d);
+#ifndef EMCV_PORT_BURLEY_H
+#define EMCV_PORT_BURLEY_H
+
+#include "port.h"
+
+EMCV_PORT_BEGIN
+
+/// The constant of SPVG's inverse-CDF approximation (SPVG 2020).
+EMCV_FN float emcv_burley_spvg_c() { return 2.5715f; }
+
+EMCV_FN float emcv_burley_pi() { return 3.14159265f; }
+
+/// r R(r) = (e^{-r/d} + e^{-r/(3d)}) / (8 pi d): the profile times r, finite at r = 0 (what shaders evaluate).
+EMCV_FN float emcv_burley_profile_r(float r, float d) {
+    return (exp(-r / d) + exp(-r / (3.0f * d))) / (8.0f * emcv_burley_pi() * d);
+}
+
+/// R(r) = (e^{-r/d} + e^{-r/(3d)}) / (8 pi d r), the area profile; infinite at r = 0.
+EMCV_FN float emcv_burley_profile(float r, float d) {
+    return emcv_burley_profile_r(r, d) / r;
+}
+
+/// p(r) = (e^{-r/d} + e^{-r/(3d)}) / (4 d), the radial pdf of the profile.
+EMCV_FN float emcv_burley_pdf(float r, float d) {
+    return (exp(-r / d) + exp(-r / (3.0f * d))) / (4.0f * d);
+}
+
+/// F(r) = 1 - e^{-r/d}/4 - 3 e^{-r/(3d)}/4.
+EMCV_FN float emcv_burley_cdf(float r, float d) {
+    return 1.0f - 0.25f * exp(-r / d) - 0.75f * exp(-r / (3.0f * d));
+}
+
+/// Exact inverse of the CDF, u in [0, 1): closed form (reference/sss.md 1.2, method 1).
+EMCV_FN float emcv_burley_sample_exact(float u, float d) {
+    float v = 1.0f - u;
+    float g = 1.0f + 4.0f * v * (2.0f * v + sqrt(1.0f + 4.0f * v * v));
+    float g13 = pow(g, 1.0f / 3.0f);
+    float x = log((1.0f + g13 + 1.0f / g13) / (4.0f * v));
+    return 3.0f * d * x;
+}
+
+/// SPVG's approximation r ~ d (2 + (c - 2) u) (-ln(1 - u)), u in [0, 1).
+EMCV_FN float emcv_burley_sample_spvg(float u, float d) {
+    return d * (2.0f + (emcv_burley_spvg_c() - 2.0f) * u) * (-log(1.0f - u));
+}
+
+EMCV_PORT_END
+
+#endif  // #ifndef EMCV_PORT_BURLEY_H

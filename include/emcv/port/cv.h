@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: MIT
+// emcv/port/cv.h — control-variate coefficient and residual in the shared C++/GLSL dialect (fp32).
+//
+// ABOUT      Float twins of emcv::cv_coefficient and emcv::cv_residual (include/emcv/control_variate.hpp):
+//                alpha* = Cov(F, G) / Var(G)                        Eq. 31
+//                r      = f - alpha g                               Eq. 29
+//            with the same guard: alpha = 0 when Var(G) is not above the floor (default: the smallest normal
+//            float; covers 0, negatives, NaN, subnormals), when either input is not finite, or when the
+//            quotient overflows. alpha = 0 means "no control variate", which can only over-state variance.
+// USAGE      float a = emcv_cv_coefficient(s.cov.y, s.cov.z);  float res = emcv_cv_residual(f, a, G);
+#ifndef EMCV_PORT_CV_H
+#define EMCV_PORT_CV_H
+
+#include "port.h"
+#include "ema.h"
+
+EMCV_PORT_BEGIN
+
+/// alpha* = cov_fg / var_g, guarded (see above). var_floor >= smallest normal.
+EMCV_FN float emcv_cv_coefficient_floor(float cov_fg, float var_g, float var_floor) {
+    if (!(var_g > var_floor) || !emcv_is_finite(var_g) || !emcv_is_finite(cov_fg)) return 0.0f;
+    float alpha = cov_fg / var_g;
+    return emcv_is_finite(alpha) ? alpha : 0.0f;
+}
+
+EMCV_FN float emcv_cv_coefficient(float cov_fg, float var_g) {
+    return emcv_cv_coefficient_floor(cov_fg, var_g, emcv_float_min_normal());
+}
+
+/// The coefficient of an EMCM over (f, G): C_fG / C_GG.
+EMCV_FN float emcv_cv_coefficient_emcm2(EMCV_IN(EmcvEmcm2) s) {
+    return emcv_cv_coefficient(s.cov.y, s.cov.z);
+}
+
+/// r = f - alpha g, the residual whose variance drives the sample count.
+EMCV_FN float emcv_cv_residual(float f, float alpha, float g) {
+    EMCV_PRECISE float r = f - alpha * g;
+    return r;
+}
+
+EMCV_PORT_END
+
+#endif  // #ifndef EMCV_PORT_CV_H

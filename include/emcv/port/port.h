@@ -1,0 +1,80 @@
+// SPDX-License-Identifier: MIT
+// emcv/port/port.h — the portability layer of the shared C++17 / GLSL 4.50 core (FidelityFX ffx_a.h pattern).
+//
+// ABOUT      Every header in include/emcv/port/ is written once in the common dialect of GLSL 4.50 and GLM
+//            (docs/porting.md lists the rules). This file maps the few things that differ: function linkage,
+//            parameter qualifiers, `precise`, the finiteness test and the namespace. fp32 throughout.
+// USAGE C++  #include <emcv/port/ema.h> (or any port header); everything lives in namespace emcv::port and
+//            needs GLM (glm::glm). Compile with -ffp-contract=off where bit-equality with the GPU matters.
+// USAGE GLSL #include "emcv/port/ema.h" through demo/gl's shader preprocessor (include root: include/);
+//            the preprocessor drops the C++-only `#include <...>` lines, GLSL never defines __cplusplus.
+// OPTIONS    EMCV_FN ........ function linkage          (C++ `inline`, GLSL empty)
+//            EMCV_IN(T) ..... input parameter           (C++ `T const&`, GLSL `in T`)
+//            EMCV_INOUT(T) .. in/out parameter          (C++ `T&`, GLSL `inout T`)
+//            EMCV_OUT(T) .... output parameter          (C++ `T&`, GLSL `out T`)
+//            EMCV_PRECISE ... no FMA contraction / reassociation of the value (C++ empty, GLSL `precise`)
+//            Each is defined only when the includer has not defined it already.
+#ifndef EMCV_PORT_PORT_H
+#define EMCV_PORT_PORT_H
+
+#ifdef __cplusplus
+#include <cmath>
+#include <glm/glm.hpp>
+#ifndef EMCV_FN
+#define EMCV_FN inline
+#endif
+#ifndef EMCV_IN
+#define EMCV_IN(T) T const&
+#endif
+#ifndef EMCV_INOUT
+#define EMCV_INOUT(T) T&
+#endif
+#ifndef EMCV_OUT
+#define EMCV_OUT(T) T&
+#endif
+#ifndef EMCV_PRECISE
+#define EMCV_PRECISE
+#endif
+#define EMCV_PORT_BEGIN namespace emcv { namespace port { using namespace glm;
+#define EMCV_PORT_END } }
+#else  // GLSL
+#ifndef EMCV_FN
+#define EMCV_FN
+#endif
+#ifndef EMCV_IN
+#define EMCV_IN(T) in T
+#endif
+#ifndef EMCV_INOUT
+#define EMCV_INOUT(T) inout T
+#endif
+#ifndef EMCV_OUT
+#define EMCV_OUT(T) out T
+#endif
+#ifndef EMCV_PRECISE
+#define EMCV_PRECISE precise
+#endif
+#define EMCV_PORT_BEGIN
+#define EMCV_PORT_END
+#endif  // #ifdef __cplusplus
+
+#ifdef __cplusplus
+namespace emcv { namespace port {
+using namespace glm;
+/// True when x is neither NaN nor +-Inf (std::isfinite; GLSL has no isfinite, see below).
+inline bool emcv_is_finite(float x) { return std::isfinite(x); }
+/// True when x is NaN.
+inline bool emcv_is_nan(float x) { return std::isnan(x); }
+} }
+#else
+bool emcv_is_finite(float x) { return !(isnan(x) || isinf(x)); }
+bool emcv_is_nan(float x) { return isnan(x); }
+#endif  // #ifdef __cplusplus
+
+EMCV_PORT_BEGIN
+
+/// Smallest positive normal fp32 number, 2^-126 (std::numeric_limits<float>::min()).
+EMCV_FN float emcv_float_min_normal() { return 1.17549435e-38f; }
+
+EMCV_PORT_END
+
+#endif  // #ifndef EMCV_PORT_PORT_H

@@ -1,0 +1,97 @@
+// Bad input: invalid parameters throw a clear std::invalid_argument; non-finite samples follow the one
+// library-wide policy (rejected, counted, state unchanged, push returns false).
+#include <emcv/emcv.hpp>
+
+#include <catch2/catch_template_test_macros.hpp>
+#include <catch2/catch_test_macros.hpp>
+#include <catch2/matchers/catch_matchers_string.hpp>
+
+#include <limits>
+
+using Catch::Matchers::ContainsSubstring;
+
+TEMPLATE_TEST_CASE("eta outside the interval 0 < eta <= 1 is refused", "[bad-input]", float, double, long double) {
+    using T = TestType;
+    for (T eta : {T(0), T(-0.1), T(1.0001), std::numeric_limits<T>::quiet_NaN(), std::numeric_limits<T>::infinity()}) {
+        REQUIRE_THROWS_WITH((emcv::emcm<T, 2>(eta)), ContainsSubstring("eta must lie in (0, 1]"));
+        REQUIRE_THROWS_WITH((emcv::ewma_covariance<T, 2>(eta)), ContainsSubstring("eta must lie in (0, 1]"));
+        REQUIRE_THROWS_AS(emcv::moving_stats<T>(eta), std::invalid_argument);
+        REQUIRE_THROWS_AS(emcv::control_variate<T>(emcv::residual_policy::emcm_sampled, eta),
+                          std::invalid_argument);
+    }
+    REQUIRE_NOTHROW(emcv::emcm<T, 1>(T(1)));
+    REQUIRE_NOTHROW(emcv::emcm<T, 1>(std::numeric_limits<T>::min()));
+}
+
+TEMPLATE_TEST_CASE("negative or non-finite weights and decays outside 0..1 are refused", "[bad-input]", float,
+                   double, long double) {
+    using T = TestType;
+    emcv::weighted_covariance<T, 2> e;
+    const std::array<T, 2> x{T(1), T(2)};
+    REQUIRE_THROWS_WITH(e.push(x, T(-1)), ContainsSubstring("weight must be finite and >= 0"));
+    REQUIRE_THROWS_WITH(e.push(x, std::numeric_limits<T>::quiet_NaN()), ContainsSubstring("weight"));
+    REQUIRE_THROWS_WITH(e.push(x, std::numeric_limits<T>::infinity()), ContainsSubstring("weight"));
+    REQUIRE_THROWS_WITH(e.push(x, T(1), T(-0.5)), ContainsSubstring("decay must lie in [0, 1]"));
+    REQUIRE_THROWS_WITH(e.push(x, T(1), T(1.5)), ContainsSubstring("decay must lie in [0, 1]"));
+    REQUIRE_THROWS_WITH(e.push(x, T(1), std::numeric_limits<T>::quiet_NaN()), ContainsSubstring("decay"));
+    REQUIRE(e.count() == 0);  // a refused call changes nothing
+    REQUIRE(e.rejected() == 0);
+}
+
+TEMPLATE_TEST_CASE("NaN and Inf samples are rejected and counted and leave the state untouched", "[bad-input]",
+                   float, double, long double) {
+    using T = TestType;
+    const T nan = std::numeric_limits<T>::quiet_NaN();
+    const T inf = std::numeric_limits<T>::infinity();
+    const std::array<std::array<T, 2>, 3> bad{{{nan, T(1)}, {T(1), inf}, {-inf, nan}}};
+
+    emcv::weighted_covariance<T, 2> w;
+    emcv::running_covariance<T, 2> r;
+    emcv::emcm<T, 2> e(T(0.1));
+    emcv::ewma_covariance<T, 2> v(T(0.1));
+    emcv::moving_stats<T> m(T(0.2));
+    for (int i = 0; i < 5; ++i) {
+        const std::array<T, 2> x{T(i), T(2 * i + 1)};
+        w.push(x);
+        r.push(x);
+        e.push(x);
+        v.push(x);
+        m.push(x[0]);
+    }
+    const auto ws = w.state();
+    const auto rs = r.state();
+    const auto es = e.state();
+    const auto vs = v.state();
+    const auto ms = m.state();
+    for (const auto& x : bad) {
+        REQUIRE_FALSE(w.push(x));
+        REQUIRE_FALSE(r.push(x));
+        REQUIRE_FALSE(e.push(x));
+        REQUIRE_FALSE(v.push(x));
+        REQUIRE_FALSE(m.push(x[0] == x[0] ? x[1] : x[0]));
+    }
+    REQUIRE(w.rejected() == 3);
+    REQUIRE(r.rejected() == 3);
+    REQUIRE(e.rejected() == 3);
+    REQUIRE(v.rejected() == 3);
+    REQUIRE(m.rejected() == 3);
+    REQUIRE(w.count() == 5);
+    REQUIRE(m.count() == 5);
+    REQUIRE(w.state().mean == ws.mean);
+    REQUIRE(w.state().covariance == ws.covariance);
+    REQUIRE(r.state().covariance == rs.covariance);
+    REQUIRE(e.state().covariance == es.covariance);
+    REQUIRE(e.state().mean == es.mean);
+    REQUIRE(v.state().covariance == vs.covariance);
+    REQUIRE(m.state().covariance == ms.covariance);
+    REQUIRE(m.mean() == ms.mean[0]);
+}
+
+TEST_CASE("a non-finite first sample does not seed the estimator", "[bad-input]") {
+    emcv::emcm<double, 1> e(0.5);
+    REQUIRE_FALSE(e.push(std::numeric_limits<double>::quiet_NaN()));
+    REQUIRE(e.count() == 0);
+    REQUIRE(e.push(2.0));  // the first finite sample seeds
+    REQUIRE(e.mean(0) == 2.0);
+    REQUIRE(e.variance(0) == 0.0);
+}
