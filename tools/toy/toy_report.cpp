@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 #include <system_error>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -84,6 +85,22 @@ std::string format_table(const toy_options& o, const toy_results& results, doubl
     out << '\n';
     if (results.static_light) append_row(out, "static h1", *results.static_light, paper_static);
     if (results.dynamic_light) append_row(out, "dynamic h2", *results.dynamic_light, paper_dynamic);
+    out << "\n(mean - paper) / sd, how far the paper's run sits from our mean in seed-to-seed spreads:\n";
+    for (const auto& [title, summary, paper] :
+         {std::tuple{"static h1", &results.static_light, &paper_static},
+          std::tuple{"dynamic h2", &results.dynamic_light, &paper_dynamic}}) {
+        if (!*summary) continue;
+        std::snprintf(buf, sizeof buf, "%-11s", title);
+        out << buf;
+        for (std::size_t k = 0; k < residual_count; ++k) {
+            const mean_sd& cell = (*summary)->cells[k];
+            char z[32];
+            std::snprintf(z, sizeof z, "%+.2f", cell.sd > 0 ? (cell.mean - (*paper)[k]) / cell.sd : 0.0);
+            std::snprintf(buf, sizeof buf, " | %-27s", z);
+            out << buf;
+        }
+        out << '\n';
+    }
     out << '\n';
     if (results.static_light)
         out << "alpha* static: pooled Cov(f,g)/Var(g) over " << results.static_light->pooled_samples
@@ -123,7 +140,8 @@ void write_csv(const std::string& dir, const toy_results& results) {
         throw output_error("--csv: cannot create directory '" + dir + "'" + (ec ? ": " + ec.message() : ""));
 
     std::vector<std::pair<fs::path, std::string>> files;
-    if (results.static_light) files.emplace_back(fs::path(dir) / "static.csv", csv_text(results.static_light->first_run));
+    if (results.static_light)
+        files.emplace_back(fs::path(dir) / "static.csv", csv_text(results.static_light->first_run));
     if (results.dynamic_light)
         files.emplace_back(fs::path(dir) / "dynamic.csv", csv_text(results.dynamic_light->first_run));
 
