@@ -13,6 +13,9 @@
 #ifdef EMCV_GL_HAVE_GLFW
 #include <GLFW/glfw3.h>
 #endif
+#ifdef EMCV_GL_HAVE_OSMESA
+#include <GL/osmesa.h>
+#endif
 
 #include <cstdlib>
 #include <sstream>
@@ -80,6 +83,24 @@ const char* platform_name(platform p) noexcept {
     return "?";
 }
 
+bool platform_built(platform p) noexcept {
+    switch (p) {
+        case platform::osmesa:
+#ifdef EMCV_GL_HAVE_OSMESA
+            return true;
+#else
+            return false;
+#endif
+        case platform::glfw_window:
+#ifdef EMCV_GL_HAVE_GLFW
+            return true;
+#else
+            return false;
+#endif
+        default: return true;
+    }
+}
+
 std::vector<platform> parse_platforms(const std::string& list) {
     std::vector<platform> out;
     std::istringstream in(list);
@@ -105,8 +126,15 @@ struct context::impl {
 #ifdef EMCV_GL_HAVE_GLFW
     GLFWwindow* window = nullptr;
 #endif
+#ifdef EMCV_GL_HAVE_OSMESA
+    OSMesaContext osmesa = nullptr;
+    std::vector<unsigned char> osmesa_buffer;
+#endif
 
     ~impl() {
+#ifdef EMCV_GL_HAVE_OSMESA
+        if (osmesa) OSMesaDestroyContext(osmesa);
+#endif
         if (egl_context != EGL_NO_CONTEXT) {
             eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
             eglDestroyContext(display, egl_context);
@@ -190,10 +218,44 @@ struct context::impl {
         return {{}, false};
     }
 
-    attempt_failure try_osmesa(const context_options&) {
-        // GL calls here go through GLVND's libOpenGL, which dispatches only to EGL/GLX contexts; an OSMesa
-        // context would need every entry point fetched with OSMesaGetProcAddress. Not supported (yet).
-        return {"not supported by this build (GLVND libOpenGL cannot dispatch to an OSMesa context)", true};
+    attempt_failure try_osmesa(const context_options& o) {
+#ifdef EMCV_GL_HAVE_OSMESA
+        const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0,
+                               OSMESA_PROFILE, OSMESA_CORE_PROFILE,
+                               OSMESA_CONTEXT_MAJOR_VERSION, o.major,
+                               OSMESA_CONTEXT_MINOR_VERSION, o.minor, 0};
+        OSMesaContext c = OSMesaCreateContextAttribs(attribs, nullptr);
+        if (!c) {
+            std::ostringstream m;
+            m << "no OpenGL " << o.major << "." << o.minor << " core context (OSMesaCreateContextAttribs failed)";
+            return {m.str(), false};
+        }
+        // The default framebuffer is a small RGBA8 buffer; rendering goes to framebuffer objects.
+        constexpr int side = 16;
+        osmesa_buffer.assign(side * side * 4, 0);
+        if (!OSMesaMakeCurrent(c, osmesa_buffer.data(), GL_UNSIGNED_BYTE, side, side)) {
+            OSMesaDestroyContext(c);
+            return {"OSMesaMakeCurrent failed", false};
+        }
+        // GL calls reach OSMesa only through libOSMesa's own exports (it precedes libOpenGL on the link line),
+        // and libOSMesa 22.3 does not export the DSA entry points (glCreateBuffers & co.): those resolve to
+        // GLVND's libOpenGL, which cannot see an OSMesa context and silently does nothing. Check both.
+        GLuint probe = 0;
+        if (glGetString(GL_VERSION)) glCreateBuffers(1, &probe);
+        if (probe == 0) {
+            OSMesaMakeCurrent(nullptr, nullptr, GL_UNSIGNED_BYTE, 0, 0);
+            OSMesaDestroyContext(c);
+            return {"OSMesa context created, but GL 4.5 direct-state-access calls (glCreateBuffers) do not reach "
+                    "it: libOSMesa does not export them and GLVND's libOpenGL cannot dispatch to OSMesa",
+                    false};
+        }
+        glDeleteBuffers(1, &probe);
+        osmesa = c;
+        return {{}, false};
+#else
+        (void)o;
+        return {"not built (configure with -DEMCV_WITH_OSMESA=ON; Mesa-only, see demo/gl/CMakeLists.txt)", true};
+#endif
     }
 
     attempt_failure try_window(const context_options& o) {

@@ -15,6 +15,9 @@ enum class platform { egl_device, egl_surfaceless, osmesa, glfw_window };
 /// "device", "surfaceless", "osmesa", "window".
 const char* platform_name(platform p) noexcept;
 
+/// False for osmesa without -DEMCV_WITH_OSMESA=ON and for window without GLFW; true otherwise.
+bool platform_built(platform p) noexcept;
+
 /// Context creation failed. what() lists every platform tried and why each failed.
 class context_error : public std::runtime_error {
 public:

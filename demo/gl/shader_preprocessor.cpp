@@ -2,7 +2,7 @@
 #include "shader_preprocessor.hpp"
 
 #include <fstream>
-#include <regex>
+#include <cctype>
 #include <set>
 #include <sstream>
 
@@ -47,6 +47,11 @@ int file_index(state& st, const fs::path& p) {
     return static_cast<int>(st.files.size() - 1);
 }
 
+/// Mesa prints "0:<line>" whatever the source-string number of #line says (style.md section 6), so the file
+/// index is also carried in the line number itself: line = index * kLinesPerFile + n.
+constexpr long kLinesPerFile = 1000000;
+long encode_line(int index, int n) { return static_cast<long>(index) * kLinesPerFile + n; }
+
 std::string where(const fs::path& file, int line) { return file.string() + ":" + std::to_string(line); }
 
 fs::path resolve_include(state& st, const fs::path& includer, const std::string& name, int line) {
@@ -74,7 +79,7 @@ void process(state& st, const fs::path& path) {
     if (!in) throw shader_error("cannot open shader file " + path.string());
     st.stack.push_back(key);
     const int index = file_index(st, path);
-    st.body << "#line 1 " << index << "\n";
+    st.body << "#line " << encode_line(index, 1) << " " << index << "\n";
     std::string line;
     int number = 0;
     while (std::getline(in, line)) {
@@ -107,7 +112,7 @@ void process(state& st, const fs::path& path) {
                 throw shader_error(where(path, number) + ": malformed #include: " + line);
             const fs::path target = resolve_include(st, path, rest.substr(1, close - 1), number);
             process(st, target);
-            st.body << "#line " << (number + 1) << " " << index << "\n";
+            st.body << "#line " << encode_line(index, number + 1) << " " << index << "\n";
         } else {
             st.body << line << "\n";
         }
@@ -131,23 +136,57 @@ preprocessed_source preprocess_file(const std::filesystem::path& path, const pre
 }
 
 std::string preprocessed_source::rewrite_log(const std::string& log) const {
-    // "<index>:<line>" at the start of a line or after "ERROR: " / "WARNING: ".
-    static const std::regex location(R"((^|\n|ERROR: |WARNING: )(\d+):(\d+))");
+    // A location is "<index>:<line>" at the start of a line or right after "ERROR: " / "WARNING: ".
+    // (Hand-written rather than std::regex: GCC 12 reports false maybe-uninitialized warnings inside <regex>
+    // under -fsanitize, and the project builds with -Werror.)
+    auto digits_at = [&log](std::size_t p) {
+        std::size_t q = p;
+        while (q < log.size() && std::isdigit(static_cast<unsigned char>(log[q]))) ++q;
+        return q;
+    };
     std::string out;
-    auto begin = std::sregex_iterator(log.begin(), log.end(), location);
-    std::size_t last = 0;
-    for (auto it = begin; it != std::sregex_iterator(); ++it) {
-        const auto& m = *it;
-        out += log.substr(last, static_cast<std::size_t>(m.position(0)) - last);
-        const unsigned long idx = std::stoul(m[2].str());
-        out += m[1].str();
-        if (idx < files.size())
-            out += files[idx] + ":" + m[3].str();
-        else
-            out += m[2].str() + ":" + m[3].str();
-        last = static_cast<std::size_t>(m.position(0) + m.length(0));
+    std::size_t i = 0;
+    bool at_line_start = true;
+    while (i < log.size()) {
+        std::size_t p = i;
+        if (!at_line_start) {
+            for (const char* tag : {"ERROR: ", "WARNING: "}) {
+                const std::size_t n = std::char_traits<char>::length(tag);
+                if (log.compare(i, n, tag) == 0) {
+                    out += log.substr(i, n);
+                    p = i + n;
+                    break;
+                }
+            }
+        }
+        if (at_line_start || p != i) {
+            const std::size_t e1 = digits_at(p);
+            if (e1 > p && e1 < log.size() && log[e1] == ':') {
+                const std::size_t e2 = digits_at(e1 + 1);
+                if (e2 > e1 + 1) {
+                    unsigned long idx = std::stoul(log.substr(p, e1 - p));
+                    unsigned long line = std::stoul(log.substr(e1 + 1, e2 - e1 - 1));
+                    if (line >= static_cast<unsigned long>(kLinesPerFile)) {  // index encoded in the line
+                        idx = line / static_cast<unsigned long>(kLinesPerFile);
+                        line %= static_cast<unsigned long>(kLinesPerFile);
+                    }
+                    if (idx < files.size())
+                        out += files[idx] + ":" + std::to_string(line);
+                    else
+                        out += log.substr(p, e2 - p);
+                    i = e2;
+                    at_line_start = false;
+                    continue;
+                }
+            }
+            i = p;
+            at_line_start = false;
+            continue;
+        }
+        at_line_start = log[i] == '\n';
+        out += log[i];
+        ++i;
     }
-    out += log.substr(last);
     return out;
 }
 

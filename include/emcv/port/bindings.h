@@ -13,8 +13,7 @@
 
 // tests/gpu parity shader (shaders/tests/port_parity.comp.glsl)
 #define EMCV_BINDING_PARITY_PARAMS 0  // uniform block: stream parameters
-#define EMCV_BINDING_PARITY_INPUT 1   // storage buffer: per-pixel stream description (vec4 per pixel)
-#define EMCV_BINDING_PARITY_OUTPUT 2  // storage buffer: per-pixel results (EMCV_PARITY_OUTPUT_VEC4S vec4s)
+#define EMCV_BINDING_PARITY_OUTPUT 1  // storage buffer: per-pixel results (EMCV_PARITY_OUTPUT_VEC4S vec4s)
 #define EMCV_PARITY_OUTPUT_VEC4S 4
 
 #ifndef __cplusplus

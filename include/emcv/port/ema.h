@@ -4,7 +4,10 @@
 //
 // ABOUT      The float twin of emcv::emcm<T, 2> and emcv::moving_stats<T> (include/emcv/emcm.hpp,
 //            moving_stats.hpp), step for step in the same order of operations:
-//                d = x - mu,  mu' = mu + r d,  Cov' = (1 - r) (Cov + r d d^T)      supp. Eq. 17 / Eq. 21
+//                d = x - mu,  mu' = mu + r d,  Cov' = Cov + r (((1 - r) d) d^T - Cov)   supp. Eq. 17 / Eq. 21
+//            i.e. Cov' = (1 - r)(Cov + r d d^T), evaluated as include/emcv/weighted_covariance.hpp does
+//            (detail::comoment_step, plain mean accuracy; an overflowing x - mu is clamped to +-FLT_MAX and
+//            the comoments saturate at +-FLT_MAX, as there)
 //            with r = 1 for the first accepted sample (it seeds mu, Cov = 0) and r = eta afterwards.
 //            Non-finite samples are refused: state unchanged, `rejected` + 1, the push returns false.
 // USAGE C++  emcv::port::EmcvEmcm2 s = emcv::port::emcv_emcm2_init(); emcv_emcm2_push(s, glm::vec2(f, g), 0.05f);
@@ -42,23 +45,40 @@ EMCV_FN EmcvEmcm2 emcv_emcm2_init() {
     return s;
 }
 
+/// One coordinate of the mean update, as detail::comoment_step (plain accuracy) in weighted_covariance.hpp:
+///     d = clamp(x - mu, -FLT_MAX, FLT_MAX),  mu' = mu + r d
+/// (an x - mu that overflows, x and mu of opposite signs near the top of the range, is clamped so the mean
+/// still moves towards x and stays finite). Returns d.
+EMCV_FN float emcv_mean_step(EMCV_INOUT(float) mu, float x, float r) {
+    EMCV_PRECISE float d = x - mu;
+    d = clamp(d, -emcv_float_max(), emcv_float_max());
+    EMCV_PRECISE float m = mu + r * d;
+    mu = m;
+    return d;
+}
+
+/// One comoment: c' = c + r ((outer d_i) d_j - c) with outer = 1 - r, saturated to +-FLT_MAX (never Inf).
+/// Equal to (1 - r)(c + r d_i d_j), supp. Eq. 21, written as detail::comoment_step evaluates it.
+EMCV_FN float emcv_comoment_step(float c, float r, float outer, float di, float dj) {
+    EMCV_PRECISE float cn = c + r * ((outer * di) * dj - c);
+    return clamp(cn, -emcv_float_max(), emcv_float_max());
+}
+
 /// Adds the pair x = (f, G) with weight eta in (0, 1] (supp. Eq. 21). Returns false when x is not finite.
 EMCV_FN bool emcv_emcm2_push(EMCV_INOUT(EmcvEmcm2) s, EMCV_IN(vec2) x, float eta) {
     if (!emcv_is_finite(x.x) || !emcv_is_finite(x.y)) {
         s.rejected = s.rejected + 1u;
         return false;
     }
-    float r = s.count == 0u ? 1.0f : eta;
-    EMCV_PRECISE float d0 = x.x - s.mean.x;
-    EMCV_PRECISE float d1 = x.y - s.mean.y;
-    EMCV_PRECISE float m0 = s.mean.x + r * d0;
-    EMCV_PRECISE float m1 = s.mean.y + r * d1;
-    float keep = 1.0f - r;
-    EMCV_PRECISE float c00 = keep * (s.cov.x + r * d0 * d0);  // (1 - r)(C + r d d^T), supp. Eq. 21
-    EMCV_PRECISE float c01 = keep * (s.cov.y + r * d0 * d1);
-    EMCV_PRECISE float c11 = keep * (s.cov.z + r * d1 * d1);
+    float r = s.count == 0u ? 1.0f : eta;  // the first sample seeds the mean, Cov = 0
+    float outer = 1.0f - r;
+    float m0 = s.mean.x;
+    float m1 = s.mean.y;
+    float d0 = emcv_mean_step(m0, x.x, r);
+    float d1 = emcv_mean_step(m1, x.y, r);
     s.mean = vec2(m0, m1);
-    s.cov = vec3(c00, c01, c11);
+    s.cov = vec3(emcv_comoment_step(s.cov.x, r, outer, d0, d0), emcv_comoment_step(s.cov.y, r, outer, d0, d1),
+                 emcv_comoment_step(s.cov.z, r, outer, d1, d1));
     s.count = s.count + 1u;
     return true;
 }
@@ -72,19 +92,19 @@ EMCV_FN EmcvMovingStats emcv_moving_stats_init() {
     return s;
 }
 
-/// mu' = mu + r (x - mu), var' = (1 - r)(var + r (x - mu)^2); r = 1 on the first sample, eta afterwards.
+/// mu' = mu + r (x - mu), var' = var + r (((1 - r) d) d - var); r = 1 on the first sample, eta afterwards
+/// (emcv::moving_stats = emcm<T, 1>, same operations).
 EMCV_FN bool emcv_moving_stats_push(EMCV_INOUT(EmcvMovingStats) s, float x, float eta) {
     if (!emcv_is_finite(x)) {
         s.rejected = s.rejected + 1u;
         return false;
     }
     float r = s.count == 0u ? 1.0f : eta;
-    EMCV_PRECISE float d = x - s.mean;
-    EMCV_PRECISE float m = s.mean + r * d;
-    float keep = 1.0f - r;
-    EMCV_PRECISE float v = keep * (s.variance + r * d * d);
+    float outer = 1.0f - r;
+    float m = s.mean;
+    float d = emcv_mean_step(m, x, r);
     s.mean = m;
-    s.variance = v;
+    s.variance = emcv_comoment_step(s.variance, r, outer, d, d);
     s.count = s.count + 1u;
     return true;
 }

@@ -75,6 +75,9 @@ EMCV_PORT_BEGIN
 /// Smallest positive normal fp32 number, 2^-126 (std::numeric_limits<float>::min()).
 EMCV_FN float emcv_float_min_normal() { return 1.17549435e-38f; }
 
+/// Largest finite fp32 value, (2 - 2^-23) 2^127 (std::numeric_limits<float>::max()).
+EMCV_FN float emcv_float_max() { return 3.40282347e38f; }
+
 EMCV_PORT_END
 
 #endif  // #ifndef EMCV_PORT_PORT_H

@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: MIT
+// emcv-glinfo: creates the emcv OpenGL 4.5 context and prints vendor, renderer, version and the platform used.
+//   emcv-glinfo [--platform device|surfaceless|osmesa] [--window] [--device N]
+// Exit status: 0 on success, 1 when no context could be created or a GL error was reported, 2 on bad usage.
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <string>
+
+#include "gl/context.hpp"
+#include "gl/debug.hpp"
+
+namespace {
+
+int usage(const char* why) {
+    std::fprintf(stderr, "emcv-glinfo: %s\nusage: emcv-glinfo [--platform device|surfaceless|osmesa] [--window] [--device N]\n", why);
+    return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    emcv::gl::context_options options;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        try {
+            if (a == "--platform" && i + 1 < argc) {
+                options.platforms = emcv::gl::parse_platforms(argv[++i]);
+                if (options.platforms.empty()) return usage("--platform needs a platform name");
+            } else if (a == "--window") {
+                options.platforms = {emcv::gl::platform::glfw_window};
+            } else if (a == "--device" && i + 1 < argc) {
+                options.device_index = std::stoi(argv[++i]);
+            } else if (a == "--help" || a == "-h") {
+                return usage("prints the OpenGL context emcv gets");
+            } else {
+                return usage(("unknown argument '" + a + "'").c_str());
+            }
+        } catch (const std::exception& e) {
+            return usage(e.what());
+        }
+    }
+    try {
+        emcv::gl::context ctx(options);
+        emcv::gl::debug_messenger debug;
+        std::printf("platform: %s\nvendor:   %s\nrenderer: %s\nversion:  %s\n",
+                    emcv::gl::platform_name(ctx.used_platform()), ctx.vendor().c_str(), ctx.renderer().c_str(),
+                    ctx.version().c_str());
+        if (!ctx.fallback_log().empty()) std::printf("platforms that failed first:%s\n", ctx.fallback_log().c_str());
+        return debug.exit_status();
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "emcv-glinfo: %s\n", e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: MIT
+#include "gl_test_support.hpp"
+
+#include <catch2/catch_test_macros.hpp>
+
+// LeakSanitizer: Mesa keeps some allocations until exit (driver caches, LLVM); suppress reports whose stack goes
+// through Mesa's libraries only. Harmless when not built with sanitizers.
+extern "C" const char* __lsan_default_suppressions() {
+    return "leak:libEGL_mesa\nleak:libgallium\nleak:libglapi\nleak:swrast_dri\nleak:libLLVM\nleak:libGLX_mesa\n";
+}
+
+namespace emcv::test {
+
+emcv::gl::context context_or_skip() {
+    std::optional<emcv::gl::context> ctx;
+    bool no_display = false;
+    std::string why;
+    try {
+        ctx.emplace(emcv::gl::context_options{});
+    } catch (const emcv::gl::context_error& e) {
+        no_display = e.no_display();
+        why = e.what();
+    }
+    if (!ctx) {
+        if (no_display) SKIP("skipped: no EGL display\n" << why);
+        FAIL(why);
+    }
+    return std::move(*ctx);
+}
+
+}  // namespace emcv::test

@@ -1,0 +1,156 @@
+// SPDX-License-Identifier: MIT
+// GL error paths: no EGL display, no OpenGL 4.5 (here: 4.7) context, a syntax error in an included shader file
+// (Mesa's log must name that file and line), a missing shader file, and GL errors counted by KHR_debug.
+#include <catch2/catch_test_macros.hpp>
+#include <catch2/matchers/catch_matchers_string.hpp>
+
+#include <array>
+#include <cstdio>
+#include <string>
+#include <sys/wait.h>
+
+#include "gl/debug.hpp"
+#include "gl/program.hpp"
+#include "gl_test_support.hpp"
+
+using Catch::Matchers::ContainsSubstring;
+
+namespace {
+
+struct run_result {
+    int exit_code;
+    std::string output;
+};
+
+run_result run(const std::string& command) {
+    run_result r{-1, {}};
+    FILE* p = popen((command + " 2>&1").c_str(), "r");
+    REQUIRE(p != nullptr);
+    std::array<char, 4096> buf{};
+    while (std::fgets(buf.data(), static_cast<int>(buf.size()), p)) r.output += buf.data();
+    const int status = pclose(p);
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+emcv::gl::preprocess_options test_options() {
+    emcv::gl::preprocess_options o;
+    o.include_dirs = {std::string(EMCV_SOURCE_DIR) + "/shaders", std::string(EMCV_SOURCE_DIR) + "/include"};
+    return o;
+}
+
+}  // namespace
+
+TEST_CASE("emcv-glinfo prints the context it gets") {
+    const run_result r = run(EMCV_GLINFO);
+    if (r.exit_code != 0 && r.output.find("platforms tried") != std::string::npos &&
+        r.output.find("no OpenGL") == std::string::npos)
+        SKIP("skipped: no EGL display\n" << r.output);
+    INFO(r.output);
+    CHECK(r.exit_code == 0);
+    CHECK_THAT(r.output, ContainsSubstring("platform: ") && ContainsSubstring("version:  4."));
+}
+
+TEST_CASE("no EGL display: the error lists every platform tried and why it failed") {
+    // GLVND finds no vendor library, which is what a machine without Mesa or a driver looks like.
+    const run_result r = run(std::string("__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json ") + EMCV_GLINFO +
+                             " --platform device,surfaceless");
+    INFO(r.output);
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.output, ContainsSubstring("cannot create an OpenGL 4.5 core context; platforms tried:"));
+    CHECK_THAT(r.output, ContainsSubstring("device: ") && ContainsSubstring("surfaceless: "));
+    CHECK_THAT(r.output, ContainsSubstring("not supported"));
+}
+
+TEST_CASE("EMCV_GL_PLATFORMS=none and an unknown platform are clear errors") {
+    const run_result none = run(std::string("EMCV_GL_PLATFORMS=none ") + EMCV_GLINFO);
+    INFO(none.output);
+    CHECK(none.exit_code == 1);
+    CHECK_THAT(none.output, ContainsSubstring("platforms tried: none"));
+    const run_result bad = run(std::string(EMCV_GLINFO) + " --platform vulkan");
+    INFO(bad.output);
+    CHECK(bad.exit_code == 2);
+    CHECK_THAT(bad.output, ContainsSubstring("unknown GL platform 'vulkan'"));
+}
+
+TEST_CASE("no OpenGL 4.5 context: asking for 4.7 fails on every platform with the reason") {
+    { auto probe = emcv::test::context_or_skip(); }  // a 4.5 context exists here, else SKIP
+    emcv::gl::context_options o;
+    o.platforms = {emcv::gl::platform::egl_device, emcv::gl::platform::egl_surfaceless};
+    o.major = 4;
+    o.minor = 7;
+    try {
+        emcv::gl::context c(o);
+        FAIL("a 4.7 context was created: " << c.version());
+    } catch (const emcv::gl::context_error& e) {
+        const std::string m = e.what();
+        INFO(m);
+        CHECK_FALSE(e.no_display());
+        CHECK_THAT(m, ContainsSubstring("cannot create an OpenGL 4.7 core context"));
+        CHECK_THAT(m, ContainsSubstring("device: ") && ContainsSubstring("surfaceless: "));
+        CHECK_THAT(m, ContainsSubstring("no OpenGL 4.7 core context (eglCreateContext: EGL_"));
+    }
+    // the environment variable gives the same through emcv-glinfo
+    const run_result r = run(std::string("EMCV_GL_VERSION=4.7 ") + EMCV_GLINFO);
+    INFO(r.output);
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.output, ContainsSubstring("no OpenGL 4.7 core context"));
+}
+
+TEST_CASE("a syntax error in an included file: Mesa's log names that file and line") {
+    auto ctx = emcv::test::context_or_skip();
+    emcv::gl::debug_messenger debug;
+    const std::string shader = std::string(EMCV_SOURCE_DIR) + "/tests/shaders/data/broken_main.comp.glsl";
+    try {
+        (void)emcv::gl::program::compute(shader, test_options());
+        FAIL("the broken shader compiled");
+    } catch (const emcv::gl::shader_error& e) {
+        const std::string m = e.what();
+        INFO(m);
+        CHECK_THAT(m, ContainsSubstring("broken_main.comp.glsl failed to compile"));
+        CHECK_THAT(m, ContainsSubstring("broken_helper.h:5"));
+    }
+}
+
+TEST_CASE("a missing shader file is a clear error before any GL call") {
+    // no context needed: the preprocessor fails before the first GL call
+    CHECK_THROWS_WITH(emcv::gl::program::compute(std::string(EMCV_SOURCE_DIR) + "/shaders/missing.comp.glsl",
+                                                 test_options()),
+                      ContainsSubstring("shader file not found") && ContainsSubstring("missing.comp.glsl"));
+}
+
+TEST_CASE("KHR_debug counts GL errors so that programs can exit non-zero") {
+    auto ctx = emcv::test::context_or_skip();
+    emcv::gl::debug_messenger debug;
+    CHECK(debug.error_count() == 0);
+    CHECK(debug.exit_status() == 0);
+    {
+        emcv::gl::debug_group group("deliberate error");
+        emcv::gl::texture_2d tex = emcv::gl::texture_2d::create();
+        glTextureStorage2D(tex.id(), 1, GL_RGBA32F, 4, 4);
+        glTextureStorage2D(tex.id(), 1, GL_RGBA32F, 4, 4);  // immutable storage twice: GL_INVALID_OPERATION
+    }
+    CHECK(debug.error_count() == 1);
+    CHECK(debug.exit_status() == 1);
+    CHECK_THAT(debug.last_error(), ContainsSubstring("GL_INVALID_OPERATION"));
+    while (glGetError() != GL_NO_ERROR) {
+    }
+}
+
+TEST_CASE("OSMesa, when built with it, gives a context that DSA calls reach, or says why not") {
+    if (!emcv::gl::platform_built(emcv::gl::platform::osmesa)) SKIP("skipped: built without OSMesa (EMCV_WITH_OSMESA=OFF)");
+    emcv::gl::context_options o;
+    o.platforms = {emcv::gl::platform::osmesa};
+    try {
+        emcv::gl::context c(o);
+        CHECK(c.used_platform() == emcv::gl::platform::osmesa);
+        emcv::gl::debug_messenger debug;
+        auto b = emcv::gl::buffer::create();
+        CHECK(b.id() != 0u);
+        CHECK(glIsBuffer(b.id()));
+        CHECK(debug.error_count() == 0);
+    } catch (const emcv::gl::context_error& e) {
+        // Mesa 22.3's libOSMesa exports no DSA entry points: the failure must say so, not pass silently.
+        CHECK_THAT(std::string(e.what()), ContainsSubstring("osmesa: ") && ContainsSubstring("glCreateBuffers"));
+    }
+}

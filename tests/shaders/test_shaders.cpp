@@ -1,0 +1,168 @@
+// SPDX-License-Identifier: MIT
+// Every shader under shaders/ goes through demo/gl's preprocessor and then glslangValidator three ways:
+// plain GLSL 4.50 validation, SPIR-V for OpenGL (-G) and SPIR-V for Vulkan 1.0 (-V). Plus the preprocessor's
+// error paths: missing file, missing include, include cycle, and a syntax error in an included file whose
+// glslang log, rewritten through the file table, names that file and line.
+#include <catch2/catch_test_macros.hpp>
+#include <catch2/matchers/catch_matchers_string.hpp>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "gl/shader_preprocessor.hpp"
+
+namespace fs = std::filesystem;
+using Catch::Matchers::ContainsSubstring;
+using emcv::gl::preprocess_file;
+using emcv::gl::preprocess_options;
+
+namespace {
+
+const fs::path source_dir = EMCV_SOURCE_DIR;
+const fs::path output_dir = EMCV_TEST_OUTPUT_DIR;
+
+preprocess_options project_options() {
+    preprocess_options o;
+    o.include_dirs = {source_dir / "shaders", source_dir / "include"};
+    return o;
+}
+
+struct run_result {
+    int status;
+    std::string output;
+};
+
+run_result run(const std::string& command) {
+    run_result r{-1, {}};
+    FILE* p = popen((command + " 2>&1").c_str(), "r");
+    REQUIRE(p != nullptr);
+    std::array<char, 4096> buf{};
+    while (std::fgets(buf.data(), static_cast<int>(buf.size()), p)) r.output += buf.data();
+    r.status = pclose(p);
+    return r;
+}
+
+/// "comp" from "name.comp.glsl".
+std::string stage_of(const fs::path& p) {
+    return p.stem().extension().string().substr(1);
+}
+
+fs::path write_preprocessed(const fs::path& shader, const std::string& text) {
+    const fs::path out = output_dir / fs::relative(shader, source_dir);
+    fs::create_directories(out.parent_path());
+    std::ofstream(out, std::ios::binary) << text;
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("every shader preprocesses and validates with glslangValidator for OpenGL and Vulkan") {
+    int shaders = 0;
+    for (const auto& entry : fs::recursive_directory_iterator(source_dir / "shaders")) {
+        const fs::path p = entry.path();
+        if (!entry.is_regular_file() || p.extension() != ".glsl" || p.stem().extension().empty()) continue;
+        ++shaders;
+        INFO("shader " << p.string());
+        const auto src = preprocess_file(p, project_options());
+        const fs::path flat = write_preprocessed(p, src.text);
+        const std::string stage = stage_of(p);
+        const std::string tool = std::string(EMCV_GLSLANG_VALIDATOR) + " -S " + stage + " ";
+        const fs::path spv = flat.string() + ".spv";
+        for (const std::string& mode : {std::string(""), std::string("-G --target-env opengl -o ") + spv.string(),
+                                        std::string("-V --target-env vulkan1.0 -o ") + spv.string()}) {
+            const run_result r = run(tool + mode + " " + flat.string());
+            INFO("glslangValidator " << mode << "\n" << src.rewrite_log(r.output));
+            CHECK(r.status == 0);
+        }
+    }
+    CHECK(shaders >= 1);
+}
+
+TEST_CASE("every port header compiles alone as GLSL 4.50 (OpenGL and Vulkan SPIR-V)") {
+    int headers = 0;
+    for (const auto& entry : fs::directory_iterator(source_dir / "include/emcv/port")) {
+        const fs::path h = entry.path();
+        if (h.extension() != ".h") continue;
+        ++headers;
+        INFO("port header " << h.string());
+        // A minimal compute shader that includes the header twice (the guard must hold) and nothing else.
+        const fs::path wrapper = output_dir / "port_alone" / (h.stem().string() + ".comp.glsl");
+        fs::create_directories(wrapper.parent_path());
+        std::ofstream(wrapper) << "#version 450 core\n#include \"emcv/port/" << h.filename().string()
+                               << "\"\n#include \"emcv/port/" << h.filename().string()
+                               << "\"\nlayout(local_size_x = 1) in;\nvoid main() {}\n";
+        const auto src = preprocess_file(wrapper, project_options());
+        const fs::path flat = wrapper.string() + ".flat.comp";
+        std::ofstream(flat, std::ios::binary) << src.text;
+        for (const std::string& mode : {std::string("-G --target-env opengl -o ") + flat.string() + ".spv",
+                                        std::string("-V --target-env vulkan1.0 -o ") + flat.string() + ".spv"}) {
+            const run_result r = run(std::string(EMCV_GLSLANG_VALIDATOR) + " -S comp " + mode + " " + flat.string());
+            INFO("glslangValidator " << mode << "\n" << src.rewrite_log(r.output));
+            CHECK(r.status == 0);
+        }
+    }
+    CHECK(headers >= 7);
+}
+
+TEST_CASE("#version and #extension are hoisted, defines injected, #pragma once honoured") {
+    preprocess_options o = project_options();
+    o.defines = {{"INJECTED", "3"}};
+    const auto src = preprocess_file(source_dir / "tests/shaders/data/hoist.comp.glsl", o);
+    CHECK(src.text.rfind("#version 450 core\n#extension GL_ARB_shader_ballot : enable\n#define INJECTED 3\n", 0) == 0);
+    // once.h appears once in the file table and its body once in the text.
+    CHECK(src.files.size() == 2);
+    const auto first = src.text.find("float once_value()");
+    REQUIRE(first != std::string::npos);
+    CHECK(src.text.find("float once_value()", first + 1) == std::string::npos);
+    const fs::path flat = write_preprocessed(source_dir / "tests/shaders/data/hoist.comp.glsl", src.text);
+    const run_result r = run(std::string(EMCV_GLSLANG_VALIDATOR) + " -S comp " + flat.string());
+    INFO(r.output);
+    CHECK(r.status == 0);
+}
+
+TEST_CASE("a missing shader file is a clear error") {
+    REQUIRE_THROWS_AS(preprocess_file(source_dir / "shaders/no_such_shader.comp.glsl", project_options()),
+                      emcv::gl::shader_error);
+    REQUIRE_THROWS_WITH(preprocess_file(source_dir / "shaders/no_such_shader.comp.glsl", project_options()),
+                        ContainsSubstring("shader file not found") && ContainsSubstring("no_such_shader.comp.glsl"));
+}
+
+TEST_CASE("a missing include names the including file, line and the searched paths") {
+    REQUIRE_THROWS_WITH(preprocess_file(source_dir / "tests/shaders/data/missing_include.comp.glsl", project_options()),
+                        ContainsSubstring("missing_include.comp.glsl:3") &&
+                            ContainsSubstring("\"does_not_exist.h\" not found") && ContainsSubstring("searched:"));
+}
+
+TEST_CASE("an include cycle is an error, not a stack overflow") {
+    REQUIRE_THROWS_WITH(preprocess_file(source_dir / "tests/shaders/data/cycle_a.h", project_options()),
+                        ContainsSubstring("include cycle"));
+}
+
+TEST_CASE("glslang's error in an included file is reported at that file and line after rewriting") {
+    const fs::path shader = source_dir / "tests/shaders/data/broken_main.comp.glsl";
+    const auto src = preprocess_file(shader, project_options());
+    const fs::path flat = write_preprocessed(shader, src.text);
+    const run_result r = run(std::string(EMCV_GLSLANG_VALIDATOR) + " -S comp " + flat.string());
+    CHECK(r.status != 0);
+    const std::string log = src.rewrite_log(r.output);
+    INFO("raw log:\n" << r.output << "\nrewritten:\n" << log);
+    CHECK_THAT(log, ContainsSubstring("broken_helper.h:5"));
+}
+
+TEST_CASE("rewrite_log maps Mesa and glslang locations through the file table") {
+    emcv::gl::preprocessed_source src;
+    src.files = {"main.comp.glsl", "inc/helper.h"};
+    // Mesa: "<source>:<line>(<col>)", the file index also encoded in the line (index * 1000000 + n)
+    CHECK(src.rewrite_log("0:1000005(48): error: syntax error\n0:7(3): warning: x\n") ==
+          "inc/helper.h:5(48): error: syntax error\nmain.comp.glsl:7(3): warning: x\n");
+    // glslang: "ERROR: <source>:<line>: "
+    CHECK(src.rewrite_log("ERROR: 1:1000012: 'x' : undeclared\nWARNING: 0:2: y\n") ==
+          "ERROR: inc/helper.h:12: 'x' : undeclared\nWARNING: main.comp.glsl:2: y\n");
+    // text without locations, and unknown indices, pass through unchanged
+    CHECK(src.rewrite_log("ERROR: 1 compilation errors.  No code generated.") ==
+          "ERROR: 1 compilation errors.  No code generated.");
+    CHECK(src.rewrite_log("9:4(1): error") == "9:4(1): error");
+}
