@@ -7,31 +7,17 @@
 #include <array>
 #include <cstdio>
 #include <string>
-#include <sys/wait.h>
 
 #include "gl/debug.hpp"
 #include "gl/program.hpp"
 #include "gl_test_support.hpp"
+#include "../support/run_command.hpp"
 
 using Catch::Matchers::ContainsSubstring;
 
 namespace {
 
-struct run_result {
-    int exit_code;
-    std::string output;
-};
-
-run_result run(const std::string& command) {
-    run_result r{-1, {}};
-    FILE* p = popen((command + " 2>&1").c_str(), "r");
-    REQUIRE(p != nullptr);
-    std::array<char, 4096> buf{};
-    while (std::fgets(buf.data(), static_cast<int>(buf.size()), p)) r.output += buf.data();
-    const int status = pclose(p);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
+emcv_test::command_result run(const std::string& command) { return emcv_test::run_command(command); }
 
 emcv::gl::preprocess_options test_options() {
     emcv::gl::preprocess_options o;
@@ -42,35 +28,35 @@ emcv::gl::preprocess_options test_options() {
 }  // namespace
 
 TEST_CASE("emcv-glinfo prints the context it gets") {
-    const run_result r = run(EMCV_GLINFO);
-    if (r.exit_code != 0 && r.output.find("platforms tried") != std::string::npos &&
-        r.output.find("no OpenGL") == std::string::npos)
-        SKIP("skipped: no EGL display\n" << r.output);
-    INFO(r.output);
+    const emcv_test::command_result r = run(EMCV_GLINFO);
+    if (r.exit_code != 0 && r.output().find("platforms tried") != std::string::npos &&
+        r.output().find("no OpenGL") == std::string::npos)
+        SKIP("skipped: no EGL display\n" << r.output());
+    INFO(r.output());
     CHECK(r.exit_code == 0);
-    CHECK_THAT(r.output, ContainsSubstring("platform: ") && ContainsSubstring("version:  4."));
+    CHECK_THAT(r.output(), ContainsSubstring("platform: ") && ContainsSubstring("version:  4."));
 }
 
 TEST_CASE("no EGL display: the error lists every platform tried and why it failed") {
     // GLVND finds no vendor library, which is what a machine without Mesa or a driver looks like.
-    const run_result r = run(std::string("__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json ") + EMCV_GLINFO +
+    const emcv_test::command_result r = run(std::string("__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json ") + EMCV_GLINFO +
                              " --platform device,surfaceless");
-    INFO(r.output);
+    INFO(r.output());
     CHECK(r.exit_code == 1);
-    CHECK_THAT(r.output, ContainsSubstring("cannot create an OpenGL 4.5 core context; platforms tried:"));
-    CHECK_THAT(r.output, ContainsSubstring("device: ") && ContainsSubstring("surfaceless: "));
-    CHECK_THAT(r.output, ContainsSubstring("not supported"));
+    CHECK_THAT(r.output(), ContainsSubstring("cannot create an OpenGL 4.5 core context; platforms tried:"));
+    CHECK_THAT(r.output(), ContainsSubstring("device: ") && ContainsSubstring("surfaceless: "));
+    CHECK_THAT(r.output(), ContainsSubstring("not supported"));
 }
 
 TEST_CASE("EMCV_GL_PLATFORMS=none and an unknown platform are clear errors") {
-    const run_result none = run(std::string("EMCV_GL_PLATFORMS=none ") + EMCV_GLINFO);
-    INFO(none.output);
+    const emcv_test::command_result none = run(std::string("EMCV_GL_PLATFORMS=none ") + EMCV_GLINFO);
+    INFO(none.output());
     CHECK(none.exit_code == 1);
-    CHECK_THAT(none.output, ContainsSubstring("platforms tried: none"));
-    const run_result bad = run(std::string(EMCV_GLINFO) + " --platform vulkan");
-    INFO(bad.output);
+    CHECK_THAT(none.output(), ContainsSubstring("platforms tried: none"));
+    const emcv_test::command_result bad = run(std::string(EMCV_GLINFO) + " --platform vulkan");
+    INFO(bad.output());
     CHECK(bad.exit_code == 2);
-    CHECK_THAT(bad.output, ContainsSubstring("unknown GL platform 'vulkan'"));
+    CHECK_THAT(bad.output(), ContainsSubstring("unknown GL platform 'vulkan'"));
 }
 
 TEST_CASE("no OpenGL 4.5 context: asking for 4.7 fails on every platform with the reason") {
@@ -91,10 +77,10 @@ TEST_CASE("no OpenGL 4.5 context: asking for 4.7 fails on every platform with th
         CHECK_THAT(m, ContainsSubstring("no OpenGL 4.7 core context (eglCreateContext: EGL_"));
     }
     // the environment variable gives the same through emcv-glinfo
-    const run_result r = run(std::string("EMCV_GL_VERSION=4.7 ") + EMCV_GLINFO);
-    INFO(r.output);
+    const emcv_test::command_result r = run(std::string("EMCV_GL_VERSION=4.7 ") + EMCV_GLINFO);
+    INFO(r.output());
     CHECK(r.exit_code == 1);
-    CHECK_THAT(r.output, ContainsSubstring("no OpenGL 4.7 core context"));
+    CHECK_THAT(r.output(), ContainsSubstring("no OpenGL 4.7 core context"));
 }
 
 TEST_CASE("a syntax error in an included file: Mesa's log names that file and line") {

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "gl/shader_preprocessor.hpp"
+#include "../support/run_command.hpp"
 
 namespace fs = std::filesystem;
 using Catch::Matchers::ContainsSubstring;
@@ -30,20 +31,7 @@ preprocess_options project_options() {
     return o;
 }
 
-struct run_result {
-    int status;
-    std::string output;
-};
-
-run_result run(const std::string& command) {
-    run_result r{-1, {}};
-    FILE* p = popen((command + " 2>&1").c_str(), "r");
-    REQUIRE(p != nullptr);
-    std::array<char, 4096> buf{};
-    while (std::fgets(buf.data(), static_cast<int>(buf.size()), p)) r.output += buf.data();
-    r.status = pclose(p);
-    return r;
-}
+emcv_test::command_result run(const std::string& command) { return emcv_test::run_command(command); }
 
 /// "comp" from "name.comp.glsl".
 std::string stage_of(const fs::path& p) {
@@ -73,9 +61,9 @@ TEST_CASE("every shader preprocesses and validates with glslangValidator for Ope
         const fs::path spv = flat.string() + ".spv";
         for (const std::string& mode : {std::string(""), std::string("-G --target-env opengl -o ") + spv.string(),
                                         std::string("-V --target-env vulkan1.0 -o ") + spv.string()}) {
-            const run_result r = run(tool + mode + " " + flat.string());
-            INFO("glslangValidator " << mode << "\n" << src.rewrite_log(r.output));
-            CHECK(r.status == 0);
+            const emcv_test::command_result r = run(tool + mode + " " + flat.string());
+            INFO("glslangValidator " << mode << "\n" << src.rewrite_log(r.output()));
+            CHECK(r.exit_code == 0);
         }
     }
     CHECK(shaders >= 1);
@@ -99,9 +87,9 @@ TEST_CASE("every port header compiles alone as GLSL 4.50 (OpenGL and Vulkan SPIR
         std::ofstream(flat, std::ios::binary) << src.text;
         for (const std::string& mode : {std::string("-G --target-env opengl -o ") + flat.string() + ".spv",
                                         std::string("-V --target-env vulkan1.0 -o ") + flat.string() + ".spv"}) {
-            const run_result r = run(std::string(EMCV_GLSLANG_VALIDATOR) + " -S comp " + mode + " " + flat.string());
-            INFO("glslangValidator " << mode << "\n" << src.rewrite_log(r.output));
-            CHECK(r.status == 0);
+            const emcv_test::command_result r = run(std::string(EMCV_GLSLANG_VALIDATOR) + " -S comp " + mode + " " + flat.string());
+            INFO("glslangValidator " << mode << "\n" << src.rewrite_log(r.output()));
+            CHECK(r.exit_code == 0);
         }
     }
     CHECK(headers >= 7);
@@ -118,9 +106,9 @@ TEST_CASE("#version and #extension are hoisted, defines injected, #pragma once h
     REQUIRE(first != std::string::npos);
     CHECK(src.text.find("float once_value()", first + 1) == std::string::npos);
     const fs::path flat = write_preprocessed(source_dir / "tests/shaders/data/hoist.comp.glsl", src.text);
-    const run_result r = run(std::string(EMCV_GLSLANG_VALIDATOR) + " -S comp " + flat.string());
-    INFO(r.output);
-    CHECK(r.status == 0);
+    const emcv_test::command_result r = run(std::string(EMCV_GLSLANG_VALIDATOR) + " -S comp " + flat.string());
+    INFO(r.output());
+    CHECK(r.exit_code == 0);
 }
 
 TEST_CASE("a missing shader file is a clear error") {
@@ -145,10 +133,10 @@ TEST_CASE("glslang's error in an included file is reported at that file and line
     const fs::path shader = source_dir / "tests/shaders/data/broken_main.comp.glsl";
     const auto src = preprocess_file(shader, project_options());
     const fs::path flat = write_preprocessed(shader, src.text);
-    const run_result r = run(std::string(EMCV_GLSLANG_VALIDATOR) + " -S comp " + flat.string());
-    CHECK(r.status != 0);
-    const std::string log = src.rewrite_log(r.output);
-    INFO("raw log:\n" << r.output << "\nrewritten:\n" << log);
+    const emcv_test::command_result r = run(std::string(EMCV_GLSLANG_VALIDATOR) + " -S comp " + flat.string());
+    CHECK(r.exit_code != 0);
+    const std::string log = src.rewrite_log(r.output());
+    INFO("raw log:\n" << r.output() << "\nrewritten:\n" << log);
     CHECK_THAT(log, ContainsSubstring("broken_helper.h:5"));
 }
 

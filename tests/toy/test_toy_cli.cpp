@@ -8,19 +8,14 @@
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 
 #include <nlohmann/json.hpp>
+
+#include "../support/run_command.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
-
-struct outcome {
-    int status = -1;
-    std::string out;
-    std::string err;
-};
 
 fs::path scratch_dir(const std::string& name) {
     const fs::path dir = fs::temp_directory_path() / ("emcv-toy-cli-" + name);
@@ -29,33 +24,15 @@ fs::path scratch_dir(const std::string& name) {
     return dir;
 }
 
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-outcome run_toy(const std::string& args, const fs::path& dir) {
-    const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-    const std::string command =
-        std::string("'") + EMCV_TOY_EXE + "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
-    const int raw = std::system(command.c_str());
-    outcome o;
-    o.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    o.out = slurp(out);
-    o.err = slurp(err);
-    fs::remove(out);
-    fs::remove(err);
-    return o;
+emcv_test::command_result run_toy(const std::string& args) {
+    return emcv_test::run_command(std::string("'") + EMCV_TOY_EXE + "' " + args);
 }
 
 }  // namespace
 
-TEST_CASE("json output is exactly exactly the documented object", "[toy][cli]") {
-    const fs::path dir = scratch_dir("json");
-    const outcome o = run_toy("--json --seeds 20", dir);
-    REQUIRE(o.status == 0);
+TEST_CASE("json output is exactly the documented object", "[toy][cli]") {
+    const emcv_test::command_result o = run_toy("--json --seeds 20");
+    REQUIRE(o.exit_code == 0);
     const nlohmann::json j = nlohmann::json::parse(o.out);
     REQUIRE(j.is_object());
     CHECK(j.size() == 4);
@@ -74,25 +51,22 @@ TEST_CASE("json output is exactly exactly the documented object", "[toy][cli]") 
     CHECK(j["alpha_star"]["static"].is_number());
     CHECK(j["alpha_star"]["dynamic"].is_number());
     CHECK(j["seeds"].get<int>() == 20);
-    fs::remove_all(dir);
 }
 
 TEST_CASE("the text table names every residual and prints the time", "[toy][cli]") {
-    const fs::path dir = scratch_dir("text");
-    const outcome o = run_toy("--seeds 5 --scenario dynamic", dir);
-    REQUIRE(o.status == 0);
+    const emcv_test::command_result o = run_toy("--seeds 5 --scenario dynamic");
+    REQUIRE(o.exit_code == 0);
     for (const char* title : {"Res_f", "Res_SF", "Res_SF+EMA", "Res_EMCM", "ResHat_EMCM", "Res_GT", "dynamic h2",
                               "elapsed:"})
         CHECK(o.out.find(title) != std::string::npos);
     CHECK(o.out.find("static h1") == std::string::npos);
-    fs::remove_all(dir);
 }
 
 TEST_CASE("csv output writes one complete per-frame file per scenario", "[toy][cli]") {
     const fs::path dir = scratch_dir("csv");
     const fs::path csv = dir / "new" / "sub";  // created on demand
-    const outcome o = run_toy("--seeds 3 --frames 40 --csv '" + csv.string() + "'", dir);
-    REQUIRE(o.status == 0);
+    const emcv_test::command_result o = run_toy("--seeds 3 --frames 40 --csv '" + csv.string() + "'");
+    REQUIRE(o.exit_code == 0);
     for (const char* name : {"static.csv", "dynamic.csv"}) {
         INFO(name);
         std::ifstream in(csv / name);
@@ -138,9 +112,9 @@ TEST_CASE("bad input exits with status 2, names the flag and writes no CSV", "[t
     for (const bad_case& c : cases) {
         const fs::path dir = scratch_dir("bad");
         const fs::path csv = dir / "csv";
-        const outcome o = run_toy(std::string(c.args) + " --csv '" + csv.string() + "'", dir);
+        const emcv_test::command_result o = run_toy(std::string(c.args) + " --csv '" + csv.string() + "'");
         INFO("args: " << c.args << "\nstderr: " << o.err);
-        CHECK(o.status == 2);
+        CHECK(o.exit_code == 2);
         CHECK(o.err.find(c.names) != std::string::npos);
         CHECK(o.out.empty());
         CHECK_FALSE(fs::exists(csv));
@@ -152,9 +126,9 @@ TEST_CASE("an unwritable csv directory exits with status 2 and leaves nothing", 
     const fs::path dir = scratch_dir("unwritable");
     const fs::path blocker = dir / "a-file";
     std::ofstream(blocker) << "not a directory\n";
-    const outcome o = run_toy("--seeds 2 --csv '" + (blocker / "csv").string() + "'", dir);
+    const emcv_test::command_result o = run_toy("--seeds 2 --csv '" + (blocker / "csv").string() + "'");
     INFO("stderr: " << o.err);
-    CHECK(o.status == 2);
+    CHECK(o.exit_code == 2);
     CHECK(o.err.find("--csv") != std::string::npos);
     CHECK(o.out.empty());
     std::size_t entries = 0;
