@@ -10,8 +10,10 @@
 //     Cov_n = (1 - r) (Cov_{n-1} + r d d^T)                    (supp. Eq. 17 divided by W_n)
 // Eq. 17 writes S_n = W_n Cov_n with the asymmetric product (y_n - nu_n)(x_n - mu_{n-1}); since
 // x_n - mu_n = (1 - r) d the two are equal, and the symmetric form keeps every variance >= 0 and every
-// matrix exactly symmetric in floating point. The normalised covariance is stored (not S_n), so the state
-// has the scale of the data for any stream length and can live in a half-float texture.
+// matrix exactly symmetric in floating point. It is evaluated as the increment
+// Cov_n = Cov_{n-1} + r ((1 - r) d d^T - Cov_{n-1}) (detail::comoment_step; why: docs/numerics.md).
+// The normalised covariance is stored (not S_n), so the state has the scale of the data for any stream
+// length and can live in a half-float texture.
 #pragma once
 
 #include <array>
@@ -19,6 +21,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
+#include <utility>
 
 #include "detail/common.hpp"
 
@@ -30,19 +34,130 @@ enum class comoment_form {
     previous_mean,  ///< first term of the expansion only, about the previous mean (EWMA, Eq. 22)
 };
 
-/// How the mean is accumulated (docs/numerics.md): `plain` stores mu_n in T; `compensated` also stores the
-/// rounding error of every mean update in state_type::mean_compensation (a Neumaier-style two-term mean),
-/// so a large offset against a small spread no longer costs digits of the covariance.
+/// How mean and covariance are accumulated (docs/numerics.md): `plain` stores them in T; `compensated` also
+/// stores the rounding error of every update in state_type::mean_compensation and
+/// state_type::covariance_compensation (two-term sums, made exact per step with TwoSum), so a large offset
+/// against a small spread, or a cumulative float stream past 2^24 samples, no longer costs digits.
 enum class mean_accuracy { plain, compensated };
 
 namespace detail {
 
 /// Error-free sum (Knuth TwoSum): s + e == a + b exactly, s = fl(a + b).
 template <class T>
-void two_sum(T a, T b, T& s, T& e) noexcept {
+EMCV_ALWAYS_INLINE void two_sum(T a, T b, T& s, T& e) noexcept {
     s = a + b;
     const T b_virtual = s - a;
     e = (a - (s - b_virtual)) + (b - b_virtual);
+}
+
+/// The coefficients of one step: r = w_n / W_n, and the weight of the outer product d d^T inside the
+/// update, outer = 1 - r (current mean, Eq. 17/21) or 1 (previous mean, Eq. 22).
+template <class T>
+struct step_weights {
+    T r, outer;
+};
+
+template <class T>
+step_weights<T> make_step_weights(T r, comoment_form form) noexcept {
+    return {r, form == comoment_form::current_mean ? T(1) - r : T(1)};
+}
+
+/// Calls f(std::integral_constant<std::size_t, I>) for I = 0 .. Count-1, unrolled at compile time (so that
+/// a loop over pixels around comoment_step has no inner loop left and vectorises).
+template <std::size_t... I, class F>
+void for_each_index(std::index_sequence<I...>, F&& f) {
+    (f(std::integral_constant<std::size_t, I>{}), ...);
+}
+
+/// Row (first) and column (second) of entry k of the packed upper triangle of an n x n matrix
+/// (the inverse of packed_index).
+constexpr std::pair<std::size_t, std::size_t> packed_row_column(std::size_t k, std::size_t n) noexcept {
+    std::size_t i = 0;
+    while (k >= n - i) {
+        k -= n - i;
+        ++i;
+    }
+    return {i, i + k};
+}
+
+/// The one recurrence of the library, on caller-owned storage: mean[N], packed covariance[N (N + 1) / 2],
+/// their low parts mean_low[N] and covariance_low[N (N + 1) / 2] (compensated only; ignored and may be null
+/// otherwise), sample x[N], weights from make_step_weights.
+///   mu_n = mu_{n-1} + r d,  d = x - mu_{n-1}
+///   current_mean:  Cov_n = Cov_{n-1} + r ((1 - r) d d^T - Cov_{n-1})    supp. Eq. 17 / 21
+///                        = (1 - r)(Cov_{n-1} + r d d^T)
+///   previous_mean: Cov_n = Cov_{n-1} + r (d d^T - Cov_{n-1})            Eq. 22 (EWMA)
+///                        = (1 - r) Cov_{n-1} + r d d^T
+/// Written as an increment, like the mean: when r is below the resolution of T (a float cumulative stream
+/// past 2^24 samples) the decay is not lost, as it is when (1 - r) rounds to 1 in the product form. The
+/// product ((outer d_i) d_j) is 0 for r = 1 (a first sample) even when d^2 overflows, and by
+/// monotonic rounding Cov + r (e - Cov) >= 0 whenever Cov >= 0 and e >= 0: every variance stays >= 0.
+/// With Accuracy == compensated the mean is the unevaluated sum mean + mean_low, d is taken against both
+/// parts, and the covariance increment is added to covariance + covariance_low the same way
+/// (docs/numerics.md section 1).
+/// Range policy: a difference x - mu that overflows (opposite signs near the top of the range) is clamped
+/// to +-max, so the mean still moves towards x and stays finite, and a covariance beyond the largest finite
+/// T saturates at +-max: finite input never stores Inf or NaN. Every select has constant or already
+/// computed arms (quiet compares, no branch around arithmetic) so that a loop over pixels vectorises.
+template <mean_accuracy Accuracy, std::size_t N, class T>
+EMCV_ALWAYS_INLINE void comoment_step(T* mean, T* mean_low, T* covariance, T* covariance_low, const T* x,
+                   const step_weights<T>& w) noexcept {
+    constexpr T largest = std::numeric_limits<T>::max();
+    constexpr std::size_t packed = N * (N + 1) / 2;
+    // Work on local copies: the four pointers may alias as far as the compiler knows, and reloading after
+    // every store would put store-to-load forwarding on the loop-carried chain.
+    T d[N];
+    for_each_index(std::make_index_sequence<N>{}, [&](auto index) {
+        constexpr std::size_t i = decltype(index)::value;
+        T mu = mean[i];
+        T di = Accuracy == mean_accuracy::compensated ? (x[i] - mu) - mean_low[i] : x[i] - mu;
+        di = std::isgreater(di, largest) ? largest : (std::isless(di, -largest) ? -largest : di);
+        d[i] = di;
+        if (Accuracy == mean_accuracy::compensated) {
+            T sum, error;
+            two_sum(mu, w.r * di, sum, error);  // sum + error == mu + r d exactly
+            const T low_new = mean_low[i] + error;
+            mu = sum + low_new;  // renormalise (fast two-sum): |low| <= ulp(mu) / 2
+            mean_low[i] = low_new - (mu - sum);
+        } else {
+            mu += w.r * di;
+        }
+        mean[i] = mu;
+    });
+    for_each_index(std::make_index_sequence<packed>{}, [&](auto index) {
+        constexpr std::size_t k = decltype(index)::value;
+        constexpr std::size_t i = packed_row_column(k, N).first, j = packed_row_column(k, N).second;
+        const T c = covariance[k];
+        if (Accuracy == mean_accuracy::compensated) {
+            // Clamping the product and the difference (constant arms) keeps every value finite: with
+            // |e|, |t| <= max the sum c + r t stays in range, and TwoSum below never meets an Inf.
+            const T low = covariance_low[k];
+            const T e_raw = (w.outer * d[i]) * d[j];
+            const bool above = std::isgreater(e_raw, largest), below = std::isless(e_raw, -largest);
+            const T e = above ? largest : (below ? -largest : e_raw);
+            T t = (e - c) - low;
+            t = std::isgreater(t, largest) ? largest : (std::isless(t, -largest) ? -largest : t);
+            T sum, error;
+            two_sum(c, w.r * t, sum, error);  // sum + error == c + r t exactly
+            const T low_new = low + error;
+            const T v = sum + low_new;  // renormalise (fast two-sum)
+            const T low_renormalised = low_new - (v - sum);
+            // an outer product beyond the range saturates the entry, as in the plain form
+            covariance_low[k] = above || below ? T(0) : low_renormalised;
+            covariance[k] = above ? largest : (below ? -largest : v);
+        } else {
+            const T v = c + w.r * ((w.outer * d[i]) * d[j] - c);
+            // saturate, never store Inf (a variance, i == j, is never negative: one compare suffices)
+            const T capped = std::isgreater(v, largest) ? largest : v;
+            covariance[k] = i == j ? capped : (std::isless(capped, -largest) ? -largest : capped);
+        }
+    });
+}
+
+template <mean_accuracy Accuracy, std::size_t N, class T>
+EMCV_ALWAYS_INLINE void comoment_step(T* mean, T* mean_low, T* covariance, T* covariance_low, const T* x, T r,
+                   comoment_form form) noexcept {
+    comoment_step<Accuracy, N>(mean, mean_low, covariance, covariance_low, x, make_step_weights(r, form));
 }
 
 }  // namespace detail
@@ -52,9 +167,9 @@ void two_sum(T a, T b, T& s, T& e) noexcept {
 /// Non-finite samples (any component NaN or +-Inf) are rejected: the state is left unchanged, `rejected()`
 /// counts them and push() returns false. This is the one NaN/Inf policy of the whole library.
 /// Invalid arguments (negative or non-finite weight, decay outside [0, 1]) throw std::invalid_argument.
-/// Range policy (docs/numerics.md): the mean never overflows (an overflowing difference switches to the
-/// convex form (1 - r) mu + r x) and a covariance beyond the largest finite T saturates at +-max, so the
-/// state stays finite for every finite input.
+/// Range policy (docs/numerics.md): the mean never overflows (an overflowing difference x - mu is clamped
+/// to +-max, so the mean still moves towards x) and a covariance beyond the largest finite T saturates at
+/// +-max, so the state stays finite for every finite input.
 template <class T, std::size_t N>
 class weighted_covariance {
     static_assert(std::is_floating_point<T>::value, "emcv estimators need a floating-point scalar T");
@@ -75,6 +190,7 @@ public:
         vector_type mean{};          ///< mu_n
         std::array<T, packed_size> covariance{};  ///< Cov_n, packed upper triangle, row-major
         vector_type mean_compensation{};  ///< low part of mu_n (mean_accuracy::compensated only; else 0)
+        std::array<T, packed_size> covariance_compensation{};  ///< low part of Cov_n (compensated only; else 0)
     };
 
     weighted_covariance() = default;
@@ -90,7 +206,7 @@ public:
     static bool valid_state(const state_type& s) noexcept {
         if (!std::isfinite(s.total_weight) || s.total_weight < T(0)) return false;
         if (!detail::all_finite(s.mean) || !detail::all_finite(s.mean_compensation)) return false;
-        if (!detail::all_finite(s.covariance)) return false;
+        if (!detail::all_finite(s.covariance) || !detail::all_finite(s.covariance_compensation)) return false;
         for (std::size_t i = 0; i < N; ++i)
             if (s.covariance[detail::packed_index(i, i, N)] < T(0)) return false;
         return true;
@@ -115,6 +231,7 @@ public:
             s_.total_weight = T(0);
             s_.mean = vector_type{};
             s_.mean_compensation = vector_type{};
+            s_.covariance_compensation = {};
             s_.covariance = {};
             return true;
         }
@@ -157,53 +274,11 @@ public:
     void reset() noexcept { s_ = state_type{}; }
 
 protected:
-    /// The recurrence itself, given r = w_n / W_n in [0, 1] (the caller keeps W_n).
-    ///   mu_n = mu_{n-1} + r d,  d = x - mu_{n-1}
-    ///   current_mean:  Cov_n = (1 - r) Cov_{n-1} + r (1 - r) d d^T     supp. Eq. 17 / Eq. 21
-    ///   previous_mean: Cov_n = (1 - r) Cov_{n-1} + r d d^T             Eq. 22 (EWMA)
-    /// The product is formed as ((coef d_i) d_j) so that r = 1 (a first sample) gives exactly 0 even when d^2
-    /// overflows, and d_i d_i >= 0 keeps every variance >= 0. With Accuracy == compensated the mean is the
-    /// unevaluated sum mean + mean_compensation, and d is taken against both parts (docs/numerics.md).
+    /// The recurrence itself (detail::comoment_step), given r = w_n / W_n in [0, 1]; the caller keeps W_n.
     template <mean_accuracy Accuracy = mean_accuracy::plain>
     void step(const vector_type& x, T r, comoment_form form) noexcept {
-        constexpr T largest = std::numeric_limits<T>::max();
-        const T keep = T(1) - r;
-        vector_type d;
-        for (std::size_t i = 0; i < N; ++i) {
-            T& mu = s_.mean[i];
-            if (Accuracy == mean_accuracy::compensated) {
-                T& low = s_.mean_compensation[i];
-                d[i] = (x[i] - mu) - low;
-                if (std::fabs(d[i]) <= largest) {
-                    T sum, error;
-                    detail::two_sum(mu, r * d[i], sum, error);  // sum + error == mu + r d exactly
-                    const T low_new = low + error;
-                    mu = sum + low_new;                          // renormalise: |low| <= ulp(mu) / 2
-                    low = low_new - (mu - sum);
-                    continue;
-                }
-                low = T(0);
-            } else {
-                d[i] = x[i] - mu;
-                if (std::fabs(d[i]) <= largest) {
-                    mu += r * d[i];
-                    continue;
-                }
-            }
-            // x and mu of opposite signs near the top of the range: x - mu overflowed. The convex form cannot
-            // overflow; the comoment it feeds is beyond the range anyway and saturates below.
-            mu = keep * mu + r * x[i];
-            d[i] = std::copysign(largest, d[i]);
-        }
-        const T coef = form == comoment_form::current_mean ? keep * r : r;
-        std::size_t k = 0;
-        for (std::size_t i = 0; i < N; ++i) {
-            for (std::size_t j = i; j < N; ++j, ++k) {
-                T& c = s_.covariance[k];
-                c = keep * c + (coef * d[i]) * d[j];
-                c = c > largest ? largest : (c < -largest ? -largest : c);  // saturate, never store Inf
-            }
-        }
+        detail::comoment_step<Accuracy, N>(s_.mean.data(), s_.mean_compensation.data(), s_.covariance.data(),
+                                           s_.covariance_compensation.data(), x.data(), r, form);
     }
 
     /// Pushes with a fixed ratio r = w / W and W kept at 1 (exponential moving estimators).

@@ -9,6 +9,14 @@
 #include <string>
 #include <type_traits>
 
+/// Forces inlining of the per-sample recurrence (GCC and Clang): a pixel loop around it can only vectorise
+/// when it is inlined, and inside a large translation unit GCC's heuristics sometimes decline.
+#if defined(__GNUC__) || defined(__clang__)
+#define EMCV_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define EMCV_ALWAYS_INLINE inline
+#endif
+
 namespace emcv {
 namespace detail {
 
