@@ -218,7 +218,8 @@ public:
     /// @param [in] decay  in [0, 1]: 1 keeps old samples at full weight, 0 forgets them
     /// @returns false (and leaves the state untouched) when x is not finite.
     bool push(const vector_type& x, T weight = T(1), T decay = T(1)) {
-        detail::require(std::isfinite(weight) && weight >= T(0), "weighted_covariance::push",
+        // one compare pair each: NaN fails both, +Inf fails the upper one
+        detail::require(weight >= T(0) && weight <= std::numeric_limits<T>::max(), "weighted_covariance::push",
                         "weight must be finite and >= 0");
         detail::require(decay >= T(0) && decay <= T(1), "weighted_covariance::push", "decay must lie in [0, 1]");
         if (!detail::all_finite(x)) {
