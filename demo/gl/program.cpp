@@ -7,23 +7,19 @@
 namespace emcv::gl {
 namespace {
 
-std::string shader_log(GLuint id) {
+// The info log of a shader or a program: glGet{Shader,Program}iv and glGet{Shader,Program}InfoLog.
+std::string info_log(GLuint id, void (*get_iv)(GLuint, GLenum, GLint*),
+                     void (*get_log)(GLuint, GLsizei, GLsizei*, GLchar*)) {
     GLint n = 0;
-    glGetShaderiv(id, GL_INFO_LOG_LENGTH, &n);
+    get_iv(id, GL_INFO_LOG_LENGTH, &n);
     std::string s(static_cast<std::size_t>(n > 0 ? n : 1), '\0');
-    glGetShaderInfoLog(id, n, nullptr, s.data());
+    get_log(id, n, nullptr, s.data());
     s.resize(std::char_traits<char>::length(s.c_str()));
     return s;
 }
 
-std::string program_log(GLuint id) {
-    GLint n = 0;
-    glGetProgramiv(id, GL_INFO_LOG_LENGTH, &n);
-    std::string s(static_cast<std::size_t>(n > 0 ? n : 1), '\0');
-    glGetProgramInfoLog(id, n, nullptr, s.data());
-    s.resize(std::char_traits<char>::length(s.c_str()));
-    return s;
-}
+std::string shader_log(GLuint id) { return info_log(id, glGetShaderiv, glGetShaderInfoLog); }
+std::string program_log(GLuint id) { return info_log(id, glGetProgramiv, glGetProgramInfoLog); }
 
 const char* stage_name(GLenum stage) {
     switch (stage) {
