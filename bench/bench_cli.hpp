@@ -6,6 +6,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -31,6 +32,17 @@ inline const char* flag_value(const std::string& arg, const std::string& name) {
 
 }  // namespace detail
 
+/// True when path can be created for writing; the probe leaves no file behind (Google Benchmark creates it).
+inline bool can_create(const std::string& path) {
+    bool ok = false;
+    {
+        std::ofstream probe(path);
+        ok = static_cast<bool>(probe);
+    }
+    if (ok) std::remove(path.c_str());
+    return ok;
+}
+
 inline command_line parse_command_line(int argc, char** argv) {
     command_line c;
     c.args.emplace_back(argc > 0 ? argv[0] : "emcv-bench");
@@ -54,7 +66,7 @@ inline command_line parse_command_line(int argc, char** argv) {
             c.out_path = out;
             c.partial_path = c.out_path + ".partial";
             if (c.out_path.empty()) c.error = "--benchmark_out needs a file name";
-            else if (!std::ofstream(c.partial_path)) c.error = "cannot write --benchmark_out '" + c.out_path + "'";
+            else if (!can_create(c.partial_path)) c.error = "cannot write --benchmark_out '" + c.out_path + "'";
             c.args.push_back("--benchmark_out=" + c.partial_path);
         } else {
             c.args.push_back(a);
