@@ -20,7 +20,7 @@ int usage(const char* why) {
     return 2;
 }
 
-/// A device index: decimal digits only (no sign, no suffix), below 2^31; -1 when the text is anything else.
+/// A device index: 1 to 9 decimal digits (no sign, no suffix, so it fits an int); -1 for anything else.
 int parse_device_index(const std::string& text) {
     if (text.empty() || text.size() > 9 || !std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; }))
         return -1;
