@@ -15,12 +15,14 @@
 #include <emcv/emcv.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <functional>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "bench_cli.hpp"
 #include "numerics_support.hpp"
 #include "raw_moments.hpp"
 
@@ -403,9 +405,30 @@ int main(int argc, char** argv) {
     register_closed_forms<double>("double");
     register_batch<float>("float");
     register_batch<double>("double");
-    benchmark::Initialize(&argc, argv);
-    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    emcv_bench::command_line cli = emcv_bench::parse_command_line(argc, argv);
+    auto drop_partial = [&] {
+        if (!cli.partial_path.empty()) std::remove(cli.partial_path.c_str());
+    };
+    if (!cli.error.empty()) {
+        std::fprintf(stderr, "emcv-bench: %s (see --help)\n", cli.error.c_str());
+        drop_partial();
+        return 2;
+    }
+    std::vector<char*> args;
+    for (std::string& a : cli.args) args.push_back(a.data());
+    int count = static_cast<int>(args.size());
+    args.push_back(nullptr);
+    benchmark::Initialize(&count, args.data());
+    if (benchmark::ReportUnrecognizedArguments(count, args.data())) {  // a flag value of the wrong type
+        drop_partial();
+        return 2;
+    }
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();
+    if (!cli.out_path.empty() && std::rename(cli.partial_path.c_str(), cli.out_path.c_str()) != 0) {
+        std::fprintf(stderr, "emcv-bench: cannot rename %s to %s\n", cli.partial_path.c_str(), cli.out_path.c_str());
+        drop_partial();
+        return 1;
+    }
     return 0;
 }

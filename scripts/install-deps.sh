@@ -12,7 +12,8 @@ packages=(
   libopenimageio-dev                       # EXR / PNG output
   nlohmann-json3-dev                       # scene files, JSON output
   libbenchmark-dev libboost-dev            # emcv-bench and the Boost.Accumulators comparison
-  glslang-tools                            # offline GLSL validation in the tests
+  glslang-tools spirv-cross                # offline GLSL validation; SPIR-V to HLSL/MSL (package tests)
+  doxygen                                  # API reference (scripts/docs.sh, ctest -L docs)
   python3 python3-matplotlib python3-numpy # plots in docs/
 )
 

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// emcv::batch_mean_covariance — covariance of batch means (Eq. 25-27).
+/// \file
+/// emcv::batch_mean_covariance — covariance of batch means (Eq. 25-27).
 #pragma once
 
 #include <cstdint>

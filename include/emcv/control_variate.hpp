@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// emcv control variates: the coefficient alpha (Eq. 29-31) and the residual policies of the toy experiment
-// (supplementary section 3), shared by emcv-toy and the renderer.
+/// \file
+/// emcv control variates: the coefficient alpha (Eq. 29-31) and the residual policies of the toy experiment
+/// (supplementary section 3), shared by emcv-toy and the renderer.
 #pragma once
 
 #include <cmath>
@@ -67,17 +68,20 @@ struct cv_frame {
 template <class T>
 class control_variate {
 public:
+    /// @param policy    how the residual and its coefficient are formed (residual_policy)
     /// @param eta_cov   EMCM weight over frames (emcm_* policies), the paper uses 0.05
     /// @param eta_alpha EMA weight that smooths alpha_SF (single_frame_ema); the paper leaves it open
     explicit control_variate(residual_policy policy, T eta_cov = T(0.05), T eta_alpha = T(0.05))
         : policy_(policy), cov_(eta_cov), alpha_ema_(eta_alpha) {}
 
+    /// The residual policy given at construction.
     residual_policy policy() const noexcept { return policy_; }
     /// Coefficient that the next residual() applies; 0 until a frame has been seen.
     T alpha() const noexcept { return alpha_; }
     /// The EMCM over (f, g) frame means (meaningful for the emcm_* policies).
     const emcm<T, 2>& frame_covariance() const noexcept { return cov_; }
 
+    /// r_t = f - alpha_{t-1} g (Eq. 29), with g = the known G(t) under emcm_constant, f itself under none.
     T residual(const cv_frame<T>& fr) const noexcept {
         switch (policy_) {
             case residual_policy::none: return fr.f;
@@ -86,6 +90,7 @@ public:
         }
     }
 
+    /// Advances alpha to alpha_t from frame t, as the policy prescribes (Eq. 31 on the frame or on the EMCM).
     void update(const cv_frame<T>& fr) {
         switch (policy_) {
             case residual_policy::none: break;
@@ -109,6 +114,7 @@ public:
         return r;
     }
 
+    /// Forgets every frame: alpha = 0, empty EMCM and alpha EMA (a failed reprojection).
     void reset() noexcept {
         alpha_ = T(0);
         cov_.reset();

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// emcv::emcm — exponential moving covariance matrix (supp. Eq. 21).
+/// \file
+/// emcv::emcm — exponential moving covariance matrix (supp. Eq. 21).
 #pragma once
 
 #include "weighted_covariance.hpp"

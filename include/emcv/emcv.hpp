@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// emcv — streaming estimators for real-time Monte Carlo subsurface control variates (Xie & Olano 2021).
-// Umbrella header: every public name of the library.
+/// \file
+/// emcv — streaming estimators for real-time Monte Carlo subsurface control variates (Xie & Olano 2021).
+/// Umbrella header: every public name of the library.
 #pragma once
 
 #include "version.hpp"
@@ -12,3 +13,7 @@
 #include "control_variate.hpp"
 #include "batch_means.hpp"
 #include "sample_count.hpp"
+
+/// \namespace emcv
+/// The C++ API: streaming covariance estimators, control variates and sample counts, templated on the
+/// scalar type; docs/estimators.md.

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// emcv::ewma_covariance — the RiskMetrics-style EWMA covariance estimator (Eq. 22).
+/// \file
+/// emcv::ewma_covariance — the RiskMetrics-style EWMA covariance estimator (Eq. 22).
 #pragma once
 
 #include "emcm.hpp"

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// emcv::moving_stats — exponential moving mean and variance of one scalar (SPVG's per-pixel history).
+/// \file
+/// emcv::moving_stats — exponential moving mean and variance of one scalar (SPVG's per-pixel history).
 #pragma once
 
 #include "emcm.hpp"
@@ -12,21 +13,23 @@ namespace emcv {
 template <class T>
 class moving_stats {
 public:
-    using value_type = T;
-    using state_type = typename emcm<T, 1>::state_type;
+    using value_type = T;                                 ///< the scalar type
+    using state_type = typename emcm<T, 1>::state_type;  ///< what a history texture stores
 
+    /// An empty history with weight eta in (0, 1] (SPVG: 0.2); other values throw std::invalid_argument.
     explicit moving_stats(T eta) : e_(eta) {}
+    /// Restores a saved state; a state that is not finite or has a negative variance throws.
     moving_stats(T eta, const state_type& s) : e_(eta, s) {}
 
     /// Returns false (state unchanged, rejected() + 1) when x is not finite.
     bool push(T x) { return e_.push(x); }
-    T mean() const noexcept { return e_.mean(0); }
-    T variance() const noexcept { return e_.variance(0); }
-    T eta() const noexcept { return e_.eta(); }
-    std::uint64_t count() const noexcept { return e_.count(); }
-    std::uint64_t rejected() const noexcept { return e_.rejected(); }
-    const state_type& state() const noexcept { return e_.state(); }
-    void reset() noexcept { e_.reset(); }
+    T mean() const noexcept { return e_.mean(0); }                    ///< mu; 0 before any sample
+    T variance() const noexcept { return e_.variance(0); }            ///< var; 0 before two samples
+    T eta() const noexcept { return e_.eta(); }                       ///< the weight of a new sample
+    std::uint64_t count() const noexcept { return e_.count(); }       ///< accepted samples
+    std::uint64_t rejected() const noexcept { return e_.rejected(); } ///< refused non-finite samples
+    const state_type& state() const noexcept { return e_.state(); }  ///< the state to save
+    void reset() noexcept { e_.reset(); }                             ///< forgets every sample
 
 private:
     emcm<T, 1> e_;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// emcv::running_covariance — cumulative (Welford) mean and covariance: weighted_covariance with w = 1, decay = 1.
+/// \file
+/// emcv::running_covariance — cumulative (Welford) mean and covariance: weighted_covariance with w = 1, decay = 1.
 #pragma once
 
 #include "weighted_covariance.hpp"

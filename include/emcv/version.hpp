@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-// emcv version: the single source of truth (CMake parses these three lines).
+/// \file
+/// emcv version: the single source of truth (CMake parses these three lines).
 #pragma once
 
-#define EMCV_VERSION_MAJOR 0
-#define EMCV_VERSION_MINOR 1
-#define EMCV_VERSION_PATCH 0
+#define EMCV_VERSION_MAJOR 0  ///< incompatible API changes
+#define EMCV_VERSION_MINOR 1  ///< compatible additions
+#define EMCV_VERSION_PATCH 0  ///< fixes

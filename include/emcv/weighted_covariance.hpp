@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// emcv::weighted_covariance — the one streaming recurrence every estimator of emcv is built on.
+/// \file
+/// emcv::weighted_covariance — the one streaming recurrence every estimator of emcv is built on.
 //
 // REFERENCES  Xie & Olano 2021, supplementary section 1: variable-weight covariance (Eq. 17, Finch 2009
 //             generalised), weighted means (Eq. 1), covariance about the current mean (Eq. 24).
@@ -176,11 +177,11 @@ class weighted_covariance {
     static_assert(N >= 1, "dimension must be at least 1");
 
 public:
-    using value_type = T;
-    using vector_type = std::array<T, N>;
-    using matrix_type = std::array<std::array<T, N>, N>;
-    static constexpr std::size_t dimension = N;
-    static constexpr std::size_t packed_size = N * (N + 1) / 2;
+    using value_type = T;                                  ///< the scalar type
+    using vector_type = std::array<T, N>;                  ///< one sample, or the mean
+    using matrix_type = std::array<std::array<T, N>, N>;   ///< the full covariance matrix
+    static constexpr std::size_t dimension = N;            ///< N, the number of variables
+    static constexpr std::size_t packed_size = N * (N + 1) / 2;  ///< entries of the packed upper triangle
 
     /// The whole estimator state, in the units of the data (what a history texture stores).
     struct state_type {
@@ -253,17 +254,19 @@ public:
         return push(vector_type{x}, weight, decay);
     }
 
-    std::uint64_t count() const noexcept { return s_.count; }
-    std::uint64_t rejected() const noexcept { return s_.rejected; }
-    T total_weight() const noexcept { return s_.total_weight; }
-    const vector_type& mean() const noexcept { return s_.mean; }
-    T mean(std::size_t i) const noexcept { return s_.mean[i]; }
+    std::uint64_t count() const noexcept { return s_.count; }         ///< accepted samples
+    std::uint64_t rejected() const noexcept { return s_.rejected; }   ///< refused non-finite samples
+    T total_weight() const noexcept { return s_.total_weight; }       ///< W_n
+    const vector_type& mean() const noexcept { return s_.mean; }      ///< mu_n; 0 before any sample
+    T mean(std::size_t i) const noexcept { return s_.mean[i]; }       ///< component i of mu_n
 
     /// Weighted covariance about the current mean (Eq. 24 divided by W_n); 0 before any sample.
     T covariance(std::size_t i, std::size_t j) const noexcept {
         return s_.covariance[detail::packed_index(i, j, N)];
     }
+    /// covariance(i, i).
     T variance(std::size_t i) const noexcept { return covariance(i, i); }
+    /// The full symmetric matrix of covariance(i, j).
     matrix_type covariance_matrix() const noexcept {
         matrix_type m{};
         for (std::size_t i = 0; i < N; ++i)
@@ -271,8 +274,8 @@ public:
         return m;
     }
 
-    const state_type& state() const noexcept { return s_; }
-    void reset() noexcept { s_ = state_type{}; }
+    const state_type& state() const noexcept { return s_; }  ///< the state to save
+    void reset() noexcept { s_ = state_type{}; }             ///< forgets every sample
 
 protected:
     /// The recurrence itself (detail::comoment_step), given r = w_n / W_n in [0, 1]; the caller keeps W_n.
@@ -309,7 +312,7 @@ protected:
         return true;
     }
 
-    state_type s_{};
+    state_type s_{};  ///< the whole state; derived estimators step it through the functions above
 };
 
 }  // namespace emcv

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// emcv/port/bindings.h — binding slots and workgroup sizes shared by the host (C++) and the shaders (GLSL),
-// FidelityFX `_resources.h` pattern: both sides read the same numbers from one place.
+/// \file
+/// emcv/port/bindings.h — binding slots and workgroup sizes shared by the host (C++) and the shaders (GLSL),
+/// FidelityFX `_resources.h` pattern: both sides read the same numbers from one place.
 //
 // ABOUT      Binding numbers are unique across resource types, so the same GLSL also validates for Vulkan,
 //            where uniform and storage buffers share one binding space per descriptor set.
@@ -9,12 +10,12 @@
 #ifndef EMCV_PORT_BINDINGS_H
 #define EMCV_PORT_BINDINGS_H
 
-#define EMCV_WORKGROUP_SIZE_X 64
+#define EMCV_WORKGROUP_SIZE_X 64  ///< local_size_x of the compute passes
 
 // tests/gpu parity shader (shaders/tests/port_parity.comp.glsl)
-#define EMCV_BINDING_PARITY_PARAMS 0  // uniform block: stream parameters
-#define EMCV_BINDING_PARITY_OUTPUT 1  // storage buffer: per-pixel results (EMCV_PARITY_OUTPUT_VEC4S vec4s)
-#define EMCV_PARITY_OUTPUT_VEC4S 4
+#define EMCV_BINDING_PARITY_PARAMS 0  ///< uniform block: stream parameters
+#define EMCV_BINDING_PARITY_OUTPUT 1  ///< storage buffer: per-pixel results (EMCV_PARITY_OUTPUT_VEC4S vec4s)
+#define EMCV_PARITY_OUTPUT_VEC4S 4     ///< vec4s per pixel in that buffer
 
 #ifndef __cplusplus
 #if defined(VULKAN)

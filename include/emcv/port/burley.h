@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// emcv/port/burley.h — Burley normalized diffusion: profile, radial pdf, CDF and radius sampling, in the
-// shared C++/GLSL dialect (fp32).
+/// \file
+/// emcv/port/burley.h — Burley normalized diffusion: profile, radial pdf, CDF and radius sampling, in the
+/// shared C++/GLSL dialect (fp32).
 //
 // ABOUT      Per colour channel with shape distance d = l / s(A) > 0 (PAPER.md section 4, reference/sss.md 1):
 //                R(r)   = (e^{-r/d} + e^{-r/(3d)}) / (8 pi d r)          area profile, integral R 2 pi r dr = 1
@@ -21,6 +22,7 @@ EMCV_PORT_BEGIN
 /// The constant of SPVG's inverse-CDF approximation (SPVG 2020).
 EMCV_FN float emcv_burley_spvg_c() { return 2.5715f; }
 
+/// pi in fp32.
 EMCV_FN float emcv_burley_pi() { return 3.14159265f; }
 
 /// r R(r) = (e^{-r/d} + e^{-r/(3d)}) / (8 pi d): the profile times r, finite at r = 0 (what shaders evaluate).

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// emcv/port/cv.h — control-variate coefficient and residual in the shared C++/GLSL dialect (fp32).
+/// \file
+/// emcv/port/cv.h — control-variate coefficient and residual in the shared C++/GLSL dialect (fp32).
 //
 // ABOUT      Float twins of emcv::cv_coefficient and emcv::cv_residual (include/emcv/control_variate.hpp):
 //                alpha* = Cov(F, G) / Var(G)                        Eq. 31
@@ -23,6 +24,7 @@ EMCV_FN float emcv_cv_coefficient_floor(float cov_fg, float var_g, float var_flo
     return emcv_is_finite(alpha) ? alpha : 0.0f;
 }
 
+/// alpha* = cov_fg / var_g (Eq. 31), 0 when var_g is below the smallest normal float or a value is not finite.
 EMCV_FN float emcv_cv_coefficient(float cov_fg, float var_g) {
     return emcv_cv_coefficient_floor(cov_fg, var_g, emcv_float_min_normal());
 }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// emcv/port/ema.h — exponential moving covariance (EMCM) of the pair (f, G) and the moving mean/variance of
-// one scalar, in the shared C++/GLSL dialect (fp32).
+/// \file
+/// emcv/port/ema.h — exponential moving covariance (EMCM) of the pair (f, G) and the moving mean/variance of
+/// one scalar, in the shared C++/GLSL dialect (fp32).
 //
 // ABOUT      The float twin of emcv::emcm<T, 2> and emcv::moving_stats<T> (include/emcv/emcm.hpp,
 //            moving_stats.hpp), step for step in the same order of operations:
@@ -22,20 +23,21 @@ EMCV_PORT_BEGIN
 
 /// EMCM state of (f, G): mean = (mu_f, mu_G), cov = (C_ff, C_fG, C_GG) (packed upper triangle, as in C++).
 struct EmcvEmcm2 {
-    vec2 mean;
-    vec3 cov;
+    vec2 mean;      ///< (mu_f, mu_G)
+    vec3 cov;       ///< (C_ff, C_fG, C_GG)
     uint count;     ///< accepted samples
     uint rejected;  ///< refused non-finite samples
 };
 
 /// Moving mean and variance of one scalar (emcv::moving_stats).
 struct EmcvMovingStats {
-    float mean;
-    float variance;
-    uint count;
-    uint rejected;
+    float mean;     ///< mu
+    float variance; ///< var
+    uint count;     ///< accepted samples
+    uint rejected;  ///< refused non-finite samples
 };
 
+/// An empty EMCM state (the first accepted sample seeds the mean).
 EMCV_FN EmcvEmcm2 emcv_emcm2_init() {
     EmcvEmcm2 s;
     s.mean = vec2(0.0f);
@@ -83,6 +85,7 @@ EMCV_FN bool emcv_emcm2_push(EMCV_INOUT(EmcvEmcm2) s, EMCV_IN(vec2) x, float eta
     return true;
 }
 
+/// An empty moving mean/variance.
 EMCV_FN EmcvMovingStats emcv_moving_stats_init() {
     EmcvMovingStats s;
     s.mean = 0.0f;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// emcv/port/hash.h — integer hashing and low-discrepancy points in the shared C++/GLSL dialect.
+/// \file
+/// emcv/port/hash.h — integer hashing and low-discrepancy points in the shared C++/GLSL dialect.
 //
 // ABOUT      All arithmetic is on 32-bit unsigned integers (wrap-around is defined in both languages), and
 //            the conversion to float is exact (24 bits), so the CPU and the GPU produce identical bits.

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// emcv/port/port.h — the portability layer of the shared C++17 / GLSL 4.50 core (FidelityFX ffx_a.h pattern).
+/// \file
+/// emcv/port/port.h — the portability layer of the shared C++17 / GLSL 4.50 core (FidelityFX ffx_a.h pattern).
 //
 // ABOUT      Every header in include/emcv/port/ is written once in the common dialect of GLSL 4.50 and GLM
 //            (docs/porting.md lists the rules). This file maps the few things that differ: function linkage,
@@ -21,21 +22,28 @@
 #include <cmath>
 #include <glm/glm.hpp>
 #ifndef EMCV_FN
+/// Function linkage: C++ `inline`, GLSL empty.
 #define EMCV_FN inline
 #endif
 #ifndef EMCV_IN
+/// Input parameter of type T: C++ `T const&`, GLSL `in T`.
 #define EMCV_IN(T) T const&
 #endif
 #ifndef EMCV_INOUT
+/// In/out parameter of type T: C++ `T&`, GLSL `inout T`.
 #define EMCV_INOUT(T) T&
 #endif
 #ifndef EMCV_OUT
+/// Output parameter of type T: C++ `T&`, GLSL `out T`.
 #define EMCV_OUT(T) T&
 #endif
 #ifndef EMCV_PRECISE
+/// No FMA contraction or reassociation of the value: C++ empty (compile with -ffp-contract=off), GLSL `precise`.
 #define EMCV_PRECISE
 #endif
+/// Opens the port's scope: C++ `namespace emcv::port` with GLM's names, GLSL nothing.
 #define EMCV_PORT_BEGIN namespace emcv { namespace port { using namespace glm;
+/// Closes what EMCV_PORT_BEGIN opened.
 #define EMCV_PORT_END } }
 #else  // GLSL
 #ifndef EMCV_FN
@@ -58,6 +66,8 @@
 #endif  // #ifdef __cplusplus
 
 #ifdef __cplusplus
+/// \namespace emcv::port
+/// The shared C++/GLSL per-pixel core (fp32), the C++ side of include/emcv/port/*.h; docs/porting.md.
 namespace emcv { namespace port {
 using namespace glm;
 /// True when x is neither NaN nor +-Inf (std::isfinite; GLSL has no isfinite, see below).

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// emcv/port/samples.h — adaptive sample count (SPVG 2020) in the shared C++/GLSL dialect (fp32).
+/// \file
+/// emcv/port/samples.h — adaptive sample count (SPVG 2020) in the shared C++/GLSL dialect (fp32).
 //
 // ABOUT      Float twin of emcv::sample_count (include/emcv/sample_count.hpp):
 //                N = ceil(clamp(variance / target, n_min, n_max)),   NaN -> n_max

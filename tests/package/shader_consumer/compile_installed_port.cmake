@@ -1,0 +1,63 @@
+# cmake -DGLSLANG=<glslangValidator> -DSPIRV_CROSS=<spirv-cross> -DINCLUDE_ROOT=<prefix>/include
+#       -DSOURCE_PORT=<emcv source>/include/emcv/port -DSHADER=consumer.comp.glsl -DWORK=<dir> -P compile_installed_port.cmake
+# An engine taking the installed GLSL side: only <prefix>/include is on the include path.
+#  1. every port header of the source tree is installed (the install rule takes the folder, not a list);
+#  2. a shader including each installed header, twice, compiles for OpenGL (-G) and Vulkan (-V) SPIR-V;
+#  3. SHADER validates as OpenGL GLSL, compiles to OpenGL and Vulkan SPIR-V, and spirv-cross turns the
+#     Vulkan SPIR-V into HLSL (shader model 5.0) and MSL source: an engine on another API can take it.
+cmake_minimum_required(VERSION 3.21)
+foreach(var GLSLANG SPIRV_CROSS INCLUDE_ROOT SOURCE_PORT SHADER WORK)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "compile_installed_port.cmake: -D${var}=... is required")
+  endif()
+endforeach()
+file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
+
+function(run step)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${step} failed (exit ${rc}):\n${out}${err}")
+  endif()
+  message(STATUS "${step}: ok")
+endfunction()
+
+# 1. the installed port is the source tree's port, header for header
+file(GLOB source_headers RELATIVE "${SOURCE_PORT}" "${SOURCE_PORT}/*.h")
+file(GLOB installed_headers RELATIVE "${INCLUDE_ROOT}/emcv/port" "${INCLUDE_ROOT}/emcv/port/*.h")
+list(SORT source_headers)
+list(SORT installed_headers)
+if(source_headers STREQUAL "")
+  message(FATAL_ERROR "no port header under ${SOURCE_PORT}")
+endif()
+if(NOT source_headers STREQUAL installed_headers)
+  message(FATAL_ERROR "installed port headers (${installed_headers}) differ from the source tree's (${source_headers})")
+endif()
+
+# 2. every installed header, included twice (include guards), for both targets
+set(all "${WORK}/all_port_headers.comp.glsl")
+set(text "#version 450 core\n#extension GL_GOOGLE_include_directive : require\n")
+foreach(h IN LISTS installed_headers)
+  string(APPEND text "#include \"emcv/port/${h}\"\n#include \"emcv/port/${h}\"\n")
+endforeach()
+string(APPEND text "layout(local_size_x = 1) in;\nvoid main() {}\n")
+file(WRITE "${all}" "${text}")
+run("every installed header, OpenGL SPIR-V" "${GLSLANG}" -G --target-env opengl "-I${INCLUDE_ROOT}" "${all}" -o "${WORK}/all.gl.spv")
+run("every installed header, Vulkan SPIR-V" "${GLSLANG}" -V --target-env vulkan1.0 "-I${INCLUDE_ROOT}" "${all}" -o "${WORK}/all.vk.spv")
+
+# 3. the consumer shader through every target
+run("consumer, OpenGL GLSL" "${GLSLANG}" -l "-I${INCLUDE_ROOT}" "${SHADER}")
+run("consumer, OpenGL SPIR-V" "${GLSLANG}" -G --target-env opengl "-I${INCLUDE_ROOT}" "${SHADER}" -o "${WORK}/consumer.gl.spv")
+run("consumer, Vulkan SPIR-V" "${GLSLANG}" -V --target-env vulkan1.0 "-I${INCLUDE_ROOT}" "${SHADER}" -o "${WORK}/consumer.vk.spv")
+run("consumer, HLSL" "${SPIRV_CROSS}" "${WORK}/consumer.vk.spv" --hlsl --shader-model 50 --output "${WORK}/consumer.hlsl")
+run("consumer, MSL" "${SPIRV_CROSS}" "${WORK}/consumer.vk.spv" --msl --output "${WORK}/consumer.metal")
+# the translated sources hold the kernel with the port's workgroup size (EMCV_WORKGROUP_SIZE_X = 64)
+file(READ "${WORK}/consumer.hlsl" hlsl)
+file(READ "${WORK}/consumer.metal" msl)
+if(NOT hlsl MATCHES "\\[numthreads\\(64, 1, 1\\)\\]")
+  message(FATAL_ERROR "consumer.hlsl has no [numthreads(64, 1, 1)] entry point")
+endif()
+if(NOT msl MATCHES "kernel void main0\\(")
+  message(FATAL_ERROR "consumer.metal has no kernel entry point")
+endif()
+message(STATUS "shader consumer: OK (${WORK})")
