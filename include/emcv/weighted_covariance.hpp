@@ -164,9 +164,9 @@ EMCV_ALWAYS_INLINE void comoment_step(T* mean, T* mean_low, T* covariance, T* co
 
 /// Streaming weighted mean and covariance matrix of N-dimensional samples.
 ///
-/// Non-finite samples (any component NaN or +-Inf) are rejected: the state is left unchanged, `rejected()`
-/// counts them and push() returns false. This is the one NaN/Inf policy of the whole library.
-/// Invalid arguments (negative or non-finite weight, decay outside [0, 1]) throw std::invalid_argument.
+/// Non-finite samples (any component NaN or +-Inf) and NaN or +Inf weights are rejected: the state is left
+/// unchanged, `rejected()` counts them and push() returns false. This is the one NaN/Inf policy of the whole
+/// library. Invalid arguments (a negative weight, decay outside [0, 1]) throw std::invalid_argument.
 /// Range policy (docs/numerics.md): the mean never overflows (an overflowing difference x - mu is clamped
 /// to +-max, so the mean still moves towards x) and a covariance beyond the largest finite T saturates at
 /// +-max, so the state stays finite for every finite input.
@@ -196,15 +196,24 @@ public:
     weighted_covariance() = default;
     /// Restores a saved (for example, quantised) state.
     /// Throws std::invalid_argument when the state is not finite (a half-float texture that overflowed to
-    /// Inf), has a negative total weight or a negative variance: a poisoned history is refused, never used.
+    /// Inf), has a negative total weight or a negative variance, or has count == 0 with anything non-zero
+    /// (see valid_state): a poisoned or half-restored history is refused, never used.
     explicit weighted_covariance(const state_type& s) : s_(s) {
         detail::require(valid_state(s), "weighted_covariance",
-                        "restored state must be finite, with total_weight >= 0 and every variance >= 0");
+                        "restored state must be finite, with total_weight >= 0, every variance >= 0, and "
+                        "all zero when count == 0");
     }
 
-    /// True when s is a state this class could have produced: finite, W >= 0, variances >= 0.
+    /// True when s is a state this class could have produced: finite, W >= 0, variances >= 0, and, when
+    /// count == 0, empty (W, mean, covariance and their low parts all 0). A texture that stores only a mean
+    /// and a covariance is restored with count >= 1 (and W = 1 for the exponential estimators): with
+    /// count == 0 the next push would seed the mean and silently discard what was stored.
     static bool valid_state(const state_type& s) noexcept {
         if (!std::isfinite(s.total_weight) || s.total_weight < T(0)) return false;
+        if (s.count == 0 && !(s.total_weight == T(0) && detail::all_zero(s.mean) &&
+                              detail::all_zero(s.mean_compensation) && detail::all_zero(s.covariance) &&
+                              detail::all_zero(s.covariance_compensation)))
+            return false;
         if (!detail::all_finite(s.mean) || !detail::all_finite(s.mean_compensation)) return false;
         if (!detail::all_finite(s.covariance) || !detail::all_finite(s.covariance_compensation)) return false;
         for (std::size_t i = 0; i < N; ++i)
@@ -214,15 +223,17 @@ public:
 
     /// Adds x with weight w after scaling every earlier weight by decay.
     /// @param [in] x      the sample
-    /// @param [in] weight w_{n,n} >= 0
+    /// @param [in] weight w_{n,n} >= 0; a NaN or +Inf weight (an importance weight whose pdf reached 0) is
+    ///                    treated like a non-finite sample: rejected and counted
     /// @param [in] decay  in [0, 1]: 1 keeps old samples at full weight, 0 forgets them
-    /// @returns false (and leaves the state untouched) when x is not finite.
+    /// @returns false (and leaves the state untouched, rejected() + 1) when x or the weight is not finite.
+    /// push(x, 0, 0) forgets everything and gives x no weight: the estimator then holds nothing (W, mean and
+    /// covariance 0; count() still counts the call), and the next push with a positive weight seeds it.
     bool push(const vector_type& x, T weight = T(1), T decay = T(1)) {
-        // one compare pair each: NaN fails both, +Inf fails the upper one
-        detail::require(weight >= T(0) && weight <= std::numeric_limits<T>::max(), "weighted_covariance::push",
-                        "weight must be finite and >= 0");
+        // NaN fails neither test here (it is rejected below); -Inf is negative
+        detail::require(!(weight < T(0)), "weighted_covariance::push", "weight must be >= 0");
         detail::require(decay >= T(0) && decay <= T(1), "weighted_covariance::push", "decay must lie in [0, 1]");
-        if (!detail::all_finite(x)) {
+        if (!detail::all_finite(x) || !(weight <= std::numeric_limits<T>::max())) {
             ++s_.rejected;
             return false;
         }

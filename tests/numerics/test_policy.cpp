@@ -171,7 +171,9 @@ TEMPLATE_TEST_CASE("invalid eta, weight and decay are refused with std::invalid_
     }
     emcv::weighted_covariance<T, 1> w;
     CHECK_THROWS_AS((w.push(T(1), T(-1))), std::invalid_argument);
-    CHECK_THROWS_AS((w.push(T(1), std::numeric_limits<T>::infinity())), std::invalid_argument);
+    CHECK_THROWS_AS((w.push(T(1), -std::numeric_limits<T>::infinity())), std::invalid_argument);
+    CHECK_FALSE(w.push(T(1), std::numeric_limits<T>::infinity()));  // rejected and counted, not thrown
+    CHECK(w.rejected() == 1);
     CHECK_THROWS_AS((w.push(T(1), T(1), T(1.5))), std::invalid_argument);
     CHECK(w.count() == 0);
 }
@@ -313,4 +315,54 @@ TEMPLATE_TEST_CASE("moving_stats_update on a structure-of-arrays history is movi
     CHECK_THROWS_AS((emcv::moving_stats_update(mean.data(), mean_low.data(), variance.data(), static_cast<T*>(nullptr),
                                                frame.data(), pixels, eta)),
                     std::invalid_argument);
+}
+
+TEMPLATE_TEST_CASE("scalar moving_stats_update forms equal emcm<T, 1> and compensated_emcm<T, 1> after every call",
+                   "", float, double) {
+    // The scalar forms share no code path with the classes' push (push_normalised); compare every stored part bit
+    // for bit, including the low parts, so that a different comoment form or a dropped low part is caught.
+    using T = TestType;
+    const T eta = T(0.05);
+    const auto s = offset_stream<T>(sizeof(T) == sizeof(float) ? 1e4 : 1e9, 0.1, 300, 21);
+    emcv::emcm<T, 1> plain(eta);
+    emcv::compensated_emcm<T, 1> compensated(eta);
+    T m = s.x[0][0], v = T(0), cm = s.x[0][0], cml = T(0), cv = T(0), cvl = T(0);  // the caller seeds
+    plain.push(s.x[0][0]);
+    compensated.push(s.x[0][0]);
+    bool low_parts_used = false;
+    for (std::size_t n = 1; n < s.x.size(); ++n) {
+        const T x = n % 13 == 5 ? std::numeric_limits<T>::quiet_NaN() : s.x[n][0];
+        const bool accepted = plain.push(x);
+        CHECK(compensated.push(x) == accepted);
+        CHECK(emcv::moving_stats_update(m, v, x, eta) == accepted);
+        CHECK(emcv::moving_stats_update(cm, cml, cv, cvl, x, eta) == accepted);
+        const auto& p = plain.state();
+        const auto& c = compensated.state();
+        INFO("step " << n);
+        CHECK(std::memcmp(&p.mean[0], &m, sizeof m) == 0);
+        CHECK(std::memcmp(&p.covariance[0], &v, sizeof v) == 0);
+        CHECK(std::memcmp(&c.mean[0], &cm, sizeof cm) == 0);
+        CHECK(std::memcmp(&c.mean_compensation[0], &cml, sizeof cml) == 0);
+        CHECK(std::memcmp(&c.covariance[0], &cv, sizeof cv) == 0);
+        CHECK(std::memcmp(&c.covariance_compensation[0], &cvl, sizeof cvl) == 0);
+        low_parts_used = low_parts_used || (cml != T(0) && cvl != T(0));
+    }
+    CHECK(low_parts_used);  // the offset stream exercises both low parts
+    CHECK(plain.rejected() > 0);
+}
+
+TEMPLATE_TEST_CASE("a restored state with a non-finite low part is refused", "", float, double) {
+    using T = TestType;
+    emcv::compensated_emcm<T, 1> e(T(0.2));
+    for (T x : {T(1e4), T(1e4 + 0.25), T(1e4 - 0.5)}) e.push(x);
+    REQUIRE_NOTHROW((emcv::compensated_emcm<T, 1>(T(0.2), e.state())));
+    for (T bad : {std::numeric_limits<T>::quiet_NaN(), std::numeric_limits<T>::infinity()}) {
+        auto low_cov = e.state();
+        low_cov.covariance_compensation[0] = bad;
+        CHECK_THROWS_AS((emcv::compensated_emcm<T, 1>(T(0.2), low_cov)), std::invalid_argument);
+        CHECK_FALSE(emcv::weighted_covariance<T, 1>::valid_state(low_cov));
+        auto low_mean = e.state();
+        low_mean.mean_compensation[0] = bad;
+        CHECK_THROWS_AS((emcv::compensated_emcm<T, 1>(T(0.2), low_mean)), std::invalid_argument);
+    }
 }

@@ -120,6 +120,20 @@ TEST_CASE("sample_count_true_distribution follows Unreal's formula", "[samples]"
     REQUIRE(emcv::sample_count_true_distribution(0.0, 1e-4, 0.2, 1e-4, 0, 64) == 0);
 }
 
+TEST_CASE("sample_count_true_distribution subtracts n_est: exactly representable cases", "[samples]") {
+    // Every operand and intermediate below is a small dyadic rational, so the arithmetic is exact in float and
+    // double and the ceiling cannot hide a missing term: with and without "- n_est" the counts differ.
+    //   g = 0.5, eta = 0.5: n_est = 0.5 (2/0.5 - 1) = 1.5;  var 2, target 0.5: 2 * 1.5 / 0.5 - 1.5 = 4.5 -> 5 (not 6)
+    REQUIRE(emcv::sample_count_true_distribution(2.0, 0.5, 0.5, 0.5, 0, 64) == 5);
+    REQUIRE(emcv::sample_count_true_distribution(2.0f, 0.5f, 0.5f, 0.5f, 0, 64) == 5);
+    //   g = 1, eta = 1: n_est = 1;  var 4, target 1: 4 - 1 = 3 exactly -> 3 (not 4)
+    REQUIRE(emcv::sample_count_true_distribution(4.0, 1.0, 1.0, 1.0, 0, 64) == 3);
+    //   g = 2, eta = 0.25: n_est = 2 * 7 = 14;  var 0.75, target 0.5: 0.75 * 14 / 0.5 - 14 = 7 -> 7 (not 21)
+    REQUIRE(emcv::sample_count_true_distribution(0.75, 2.0, 0.25, 0.5, 0, 64) == 7);
+    //   g = 2, eta = 1: n_est = 2;  var 0.5, target 1: 0.5 * 2 - 2 = -1, clamped to n_min = 0 (not 1)
+    REQUIRE(emcv::sample_count_true_distribution(0.5, 2.0, 1.0, 1.0, 0, 64) == 0);
+}
+
 TEST_CASE("sample_count rejects a meaningless budget", "[samples]") {
     using Catch::Matchers::ContainsSubstring;
     REQUIRE_THROWS_WITH(emcv::sample_count(1.0, 0.0, 8, 64), ContainsSubstring("target variance"));
