@@ -311,7 +311,7 @@ constexpr std::size_t pixels = 1920 * 1080;
 template <class T>
 [[gnu::noinline]] std::size_t batch_update(T* mean, T* mean_low, T* variance, T* variance_low, const T* frame,
                                            std::size_t count, T eta) {
-    return emcv::moving_stats_update(mean, mean_low, variance, variance_low, frame, count, eta);
+    return emcv::moving_stats_update(mean, mean_low, variance, variance_low, frame, count, eta).rejected;
 }
 
 template <class T>

@@ -291,9 +291,11 @@ TEMPLATE_TEST_CASE("moving_stats_update on a structure-of-arrays history is movi
         }
         expected_rejections += rejected_now;
         CHECK(emcv::moving_stats_update(mean.data(), static_cast<T*>(nullptr), variance.data(), static_cast<T*>(nullptr),
-                                        frame.data(), pixels, eta) == rejected_now);
+                                        frame.data(), pixels, eta)
+                  .rejected == rejected_now);
         CHECK(emcv::moving_stats_update(c_mean.data(), mean_low.data(), c_variance.data(), variance_low.data(),
-                                        frame.data(), pixels, eta) == rejected_now);
+                                        frame.data(), pixels, eta)
+                  .rejected == rejected_now);
         for (std::size_t p = 0; p < pixels; ++p) {
             T m = reference[p].mean(), v = reference[p].variance();
             CHECK(std::memcmp(&m, &mean[p], sizeof m) == 0);
@@ -365,4 +367,56 @@ TEMPLATE_TEST_CASE("a restored state with a non-finite low part is refused", "",
         low_mean.mean_compensation[0] = bad;
         CHECK_THROWS_AS((emcv::compensated_emcm<T, 1>(T(0.2), low_mean)), std::invalid_argument);
     }
+}
+
+TEMPLATE_TEST_CASE("moving_stats_update reseeds and counts an invalid stored pixel, keeps it without a finite value",
+                   "", float, double) {
+    // A half-float history whose variance overflowed to Inf, a NaN that got into the state, a negative variance
+    // (a lossy store): each would stay poisoned for ever (Inf becomes NaN at the next step, and sample_count
+    // maps NaN to n_max). A finite frame value reseeds such a pixel as a first sample and counts it.
+    using T = TestType;
+    const T inf = std::numeric_limits<T>::infinity(), nan = std::numeric_limits<T>::quiet_NaN();
+    const T eta = T(0.25);
+    for (const bool compensated : {false, true}) {
+        //                pixel:  0 valid  1 Inf var   2 NaN mean  3 neg. var  4 Inf mean, NaN frame  5 valid, NaN frame
+        std::vector<T> mean{T(1), T(2), nan, T(4), inf, T(6)};
+        std::vector<T> variance{T(0.5), inf, T(1), T(-1), T(1), T(0.5)};
+        std::vector<T> mean_low(6, T(0)), variance_low(6, T(0));
+        const std::vector<T> frame{T(3), T(10), T(20), T(30), nan, nan};
+        T* ml = compensated ? mean_low.data() : nullptr;
+        T* vl = compensated ? variance_low.data() : nullptr;
+        INFO("compensated " << compensated);
+        const auto counts = emcv::moving_stats_update(mean.data(), ml, variance.data(), vl, frame.data(), 6, eta);
+        CHECK(counts.rejected == 2);
+        CHECK(counts.reseeded == 3);
+        // pixel 0: the ordinary step, mean 1 + 0.25 * 2 = 1.5, variance 0.75 (0.5 + 0.25 * 4) = 1.125
+        CHECK(mean[0] == T(1.5));
+        CHECK(variance[0] == T(1.125));
+        for (std::size_t p = 1; p <= 3; ++p) {  // reseeded: mean = x, variance 0
+            CHECK(mean[p] == frame[p]);
+            CHECK(variance[p] == T(0));
+        }
+        CHECK(std::isinf(mean[4]));  // invalid and no finite value: its stored bits stay, counted as rejected
+        CHECK(variance[4] == T(1));
+        CHECK(mean[5] == T(6));  // valid and rejected: untouched
+        CHECK(variance[5] == T(0.5));
+        // the next finite value reseeds pixel 4 as well
+        const std::vector<T> next{T(3), T(10), T(20), T(30), T(40), T(6)};
+        const auto again = emcv::moving_stats_update(mean.data(), ml, variance.data(), vl, next.data(), 6, eta);
+        CHECK(again.rejected == 0);
+        CHECK(again.reseeded == 1);
+        CHECK(mean[4] == T(40));
+        CHECK(variance[4] == T(0));
+    }
+    // a non-finite low part makes the compensated pixel invalid too
+    T m = T(1), ml = nan, v = T(1), vl = T(0);
+    CHECK(emcv::moving_stats_update(m, ml, v, vl, T(5), eta));
+    CHECK(m == T(5));
+    CHECK(ml == T(0));
+    CHECK(v == T(0));
+    // the scalar plain form follows the same rule
+    T pm = T(2), pv = inf;
+    CHECK(emcv::moving_stats_update(pm, pv, T(7), eta));
+    CHECK(pm == T(7));
+    CHECK(pv == T(0));
 }
