@@ -10,6 +10,9 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <vector>
+
+#include "../support/reference.hpp"
 
 TEST_CASE("cv_coefficient is Cov/Var with a guard that falls back to no control variate", "[cv]") {
     REQUIRE(emcv::cv_coefficient(0.5, 2.0) == 0.25);
@@ -42,28 +45,38 @@ TEST_CASE("residual policies apply the coefficient of the previous frame", "[cv]
 
     emcv::control_variate<double> sf(residual_policy::single_frame);
     REQUIRE(sf.push(f1) == 2.0);  // alpha_0 = 0
-    REQUIRE(sf.alpha() == emcv::cv_coefficient(0.3, 0.1));
-    REQUIRE(sf.push(f2) == 3.0 - emcv::cv_coefficient(0.3, 0.1) * 2.0);
+    REQUIRE(sf.alpha() == 0.3 / 0.1);
+    REQUIRE(sf.push(f2) == 3.0 - (0.3 / 0.1) * 2.0);
     REQUIRE(sf.alpha() == 0.5);
 
     emcv::control_variate<double> ema(residual_policy::single_frame_ema, 0.05, 0.25);
     ema.push(f1);
-    REQUIRE(ema.alpha() == emcv::cv_coefficient(0.3, 0.1));  // the first alpha seeds the EMA
+    REQUIRE(ema.alpha() == 0.3 / 0.1);  // the first alpha seeds the EMA
     ema.push(f2);
     REQUIRE(std::fabs(ema.alpha() - (0.75 * 3.0 + 0.25 * 0.5)) < 1e-15);
 
+    // The emcm_* coefficient against the two-pass weighted covariance of the (f, g) frame means under the
+    // geometric weights of Eq. 18 (long double, independent of the recurrence): alpha = C_fg / C_gg, 0 while
+    // C_gg = 0 (one frame seen).
     emcv::control_variate<double> sampled(residual_policy::emcm_sampled, 0.5);
     emcv::control_variate<double> constant(residual_policy::emcm_constant, 0.5);
-    emcv::emcm<double, 2> reference(0.5);
-    for (const auto& fr : {f1, f2, f1, f2}) {
-        const double alpha = emcv::cv_coefficient(reference.covariance(0, 1), reference.variance(1));
-        REQUIRE(sampled.residual(fr) == fr.f - alpha * fr.g);
-        REQUIRE(constant.residual(fr) == fr.f - alpha * fr.g_expected);
+    const emcv::cv_frame<double> f3{2.5, 3.0, 1.0, 0.1, 0.2};  // off the line through f1 and f2
+    const std::vector<emcv::cv_frame<double>> frames{f1, f2, f3, f1, f2, f3};
+    std::vector<std::array<double, 2>> seen;
+    double alpha_expected = 0;
+    for (const auto& fr : frames) {
+        INFO("frame " << seen.size());
+        REQUIRE(std::fabs(sampled.residual(fr) - (fr.f - alpha_expected * fr.g)) <= 1e-12);
+        REQUIRE(std::fabs(constant.residual(fr) - (fr.f - alpha_expected * fr.g_expected)) <= 1e-12);
         sampled.update(fr);
         constant.update(fr);
-        reference.push({fr.f, fr.g});
+        seen.push_back({fr.f, fr.g});
+        const auto ref = emcv_test::two_pass<2>(seen, emcv_test::geometric_weights(0.5, seen.size()), seen.size());
+        alpha_expected = ref.covariance[1][1] > 0 ? static_cast<double>(ref.covariance[0][1] / ref.covariance[1][1]) : 0.0;
+        REQUIRE(std::fabs(sampled.alpha() - alpha_expected) <= 1e-12 * (1 + std::fabs(alpha_expected)));
         REQUIRE(sampled.alpha() == constant.alpha());  // same EMCM, same alpha (Table 1's ResHat_EMCM)
     }
+    REQUIRE(std::fabs(alpha_expected) > 0.05);  // a real coefficient (2/21 here), not the guard's 0
     REQUIRE(sampled.alpha() != 0.0);
     sampled.reset();
     REQUIRE(sampled.alpha() == 0.0);
