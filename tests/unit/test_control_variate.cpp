@@ -156,3 +156,18 @@ TEST_CASE("sample_count rejects a meaningless budget", "[samples]") {
     REQUIRE_THROWS_WITH(emcv::sample_count_true_distribution(1.0, 1.0, 0.0, 1e-4, 8, 64),
                         ContainsSubstring("eta must lie in (0, 1]"));
 }
+
+TEST_CASE("a broken history samples fully; a NaN floor turns the control variate off", "[samples][cv]") {
+    const double nan = std::nan(""), inf = std::numeric_limits<double>::infinity();
+    // sample_count_true_distribution: a NaN (or Inf) per-sample history makes n_est and the count NaN -> n_max,
+    // as a NaN variance does in sample_count (more samples, never fewer, when the history is broken)
+    REQUIRE(emcv::sample_count_true_distribution(2.0, nan, 0.5, 0.5, 1, 48) == 48);
+    REQUIRE(emcv::sample_count_true_distribution(0.0, nan, 0.5, 0.5, 1, 48) == 48);
+    REQUIRE(emcv::sample_count_true_distribution(2.0, inf, 0.5, 0.5, 1, 48) == 48);
+    REQUIRE(emcv::sample_count_true_distribution(0.0, inf, 0.5, 0.5, 1, 48) == 48);  // 0 * Inf is NaN
+    REQUIRE(emcv::sample_count_true_distribution(nan, 0.5, 0.5, 0.5, 1, 48) == 48);
+    // cv_coefficient: no variance is "above" a NaN floor, so alpha = 0 (the residual is f itself)
+    REQUIRE(emcv::cv_coefficient(0.5, 2.0, nan) == 0.0);
+    REQUIRE(emcv::cv_coefficient(0.5f, 2.0f, std::nanf("")) == 0.0f);
+    REQUIRE(emcv::cv_coefficient(0.5, 2.0, 1.0) == 0.25);  // while a finite floor below var_g lets it through
+}
