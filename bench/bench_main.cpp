@@ -94,6 +94,17 @@ struct variant {
     std::function<T(const std::vector<T>&, const std::vector<T>&, const std::vector<T>&)> run;
 };
 
+/// EMCM variance of a stream by the bare step: the first sample seeds (mean = x, variance 0), then r = eta.
+template <emcv::detail::range_check Range, class T>
+T one_stream_step(const std::vector<T>& x, T eta) {
+    T mean = x[0], variance = T(0);
+    for (std::size_t i = 1; i < x.size(); ++i)
+        emcv::detail::comoment_step<emcv::mean_accuracy::plain, 1, Range>(&mean, static_cast<T*>(nullptr), &variance,
+                                                                          static_cast<T*>(nullptr), &x[i], eta,
+                                                                          emcv::comoment_form::current_mean);
+    return variance;
+}
+
 template <class T>
 std::vector<variant<T>> variants() {
     const T eta = static_cast<T>(bench_eta);
@@ -116,6 +127,17 @@ std::vector<variant<T>> variants() {
                        emcv::moving_stats<T> e(eta);
                        for (T v : x) e.push(v);
                        return e.variance();
+                   }});
+    // The one-stream step alone (no finiteness test, no count), with the range clamps of x - mu and of the
+    // variance evaluated as selects (the vectorisable form the batch uses, on the dependent chain) and behind
+    // predicted branches (the form emcm's push uses since issue 12): same results, side by side in one run.
+    out.push_back({"emcm step, range clamps as selects", "exponential variance", statistic::variance,
+                   exact_kind::exponential, [eta](const V& x, const V&, const V&) {
+                       return one_stream_step<emcv::detail::range_check::select>(x, eta);
+                   }});
+    out.push_back({"emcm step, range clamps behind branches", "exponential variance", statistic::variance,
+                   exact_kind::exponential, [eta](const V& x, const V&, const V&) {
+                       return one_stream_step<emcv::detail::range_check::branch>(x, eta);
                    }});
     out.push_back({"raw moments (exponential E[x^2]-E[x]^2)", "exponential variance", statistic::variance,
                    exact_kind::exponential, [eta](const V& x, const V&, const V&) {

@@ -97,9 +97,22 @@ constexpr std::pair<std::size_t, std::size_t> packed_row_column(std::size_t k, s
 /// (docs/numerics.md section 1).
 /// Range policy: a difference x - mu that overflows (opposite signs near the top of the range) is clamped
 /// to +-max, so the mean still moves towards x and stays finite, and a covariance beyond the largest finite
-/// T saturates at +-max: finite input never stores Inf or NaN. Every select has constant or already
-/// computed arms (quiet compares, no branch around arithmetic) so that a loop over pixels vectorises.
-template <mean_accuracy Accuracy, std::size_t N, class T>
+/// T saturates at +-max: finite input never stores Inf or NaN.
+/// Where the clamps are evaluated (Range): range_check::select computes every clamp as a select with constant
+/// or already computed arms (quiet compares, no branch around arithmetic) so that a loop over pixels
+/// vectorises. range_check::branch, for one stream, skips each clamp behind a branch that is taken only when
+/// the value is out of range (|v| <= max fails): the clamp is the identity on every in-range value, so the
+/// results are bit-identical, and the predicted branch takes the compare and select off the loop-carried
+/// chain mu -> d -> mu (sub + fma) and Cov -> Cov (docs/accuracy-vs-time.md, "One stream").
+enum class range_check { select, branch };
+
+#if defined(__GNUC__) || defined(__clang__)
+#define EMCV_UNLIKELY(x) __builtin_expect(!!(x), 0)
+#else
+#define EMCV_UNLIKELY(x) (x)
+#endif
+
+template <mean_accuracy Accuracy, std::size_t N, range_check Range = range_check::select, class T>
 EMCV_ALWAYS_INLINE void comoment_step(T* mean, T* mean_low, T* covariance, T* covariance_low, const T* x,
                    const step_weights<T>& w) noexcept {
     constexpr T largest = std::numeric_limits<T>::max();
@@ -111,7 +124,8 @@ EMCV_ALWAYS_INLINE void comoment_step(T* mean, T* mean_low, T* covariance, T* co
         constexpr std::size_t i = decltype(index)::value;
         T mu = mean[i];
         T di = Accuracy == mean_accuracy::compensated ? (x[i] - mu) - mean_low[i] : x[i] - mu;
-        di = std::isgreater(di, largest) ? largest : (std::isless(di, -largest) ? -largest : di);
+        if (Range == range_check::select || EMCV_UNLIKELY(!(std::fabs(di) <= largest)))
+            di = std::isgreater(di, largest) ? largest : (std::isless(di, -largest) ? -largest : di);
         d[i] = di;
         if (Accuracy == mean_accuracy::compensated) {
             T sum, error;
@@ -136,28 +150,37 @@ EMCV_ALWAYS_INLINE void comoment_step(T* mean, T* mean_low, T* covariance, T* co
             const bool above = std::isgreater(e_raw, largest), below = std::isless(e_raw, -largest);
             const T e = above ? largest : (below ? -largest : e_raw);
             T t = (e - c) - low;
-            t = std::isgreater(t, largest) ? largest : (std::isless(t, -largest) ? -largest : t);
+            if (Range == range_check::select || EMCV_UNLIKELY(!(std::fabs(t) <= largest)))
+                t = std::isgreater(t, largest) ? largest : (std::isless(t, -largest) ? -largest : t);
             T sum, error;
             two_sum(c, w.r * t, sum, error);  // sum + error == c + r t exactly
             const T low_new = low + error;
             const T v = sum + low_new;  // renormalise (fast two-sum)
             const T low_renormalised = low_new - (v - sum);
             // an outer product beyond the range saturates the entry, as in the plain form
-            covariance_low[k] = above || below ? T(0) : low_renormalised;
-            covariance[k] = above ? largest : (below ? -largest : v);
+            if (Range == range_check::select || EMCV_UNLIKELY(above || below)) {
+                covariance_low[k] = above || below ? T(0) : low_renormalised;
+                covariance[k] = above ? largest : (below ? -largest : v);
+            } else {
+                covariance_low[k] = low_renormalised;
+                covariance[k] = v;
+            }
         } else {
-            const T v = c + w.r * ((w.outer * d[i]) * d[j] - c);
+            T v = c + w.r * ((w.outer * d[i]) * d[j] - c);
             // saturate, never store Inf (a variance, i == j, is never negative: one compare suffices)
-            const T capped = std::isgreater(v, largest) ? largest : v;
-            covariance[k] = i == j ? capped : (std::isless(capped, -largest) ? -largest : capped);
+            if (Range == range_check::select || EMCV_UNLIKELY(!(std::fabs(v) <= largest))) {
+                const T capped = std::isgreater(v, largest) ? largest : v;
+                v = i == j ? capped : (std::isless(capped, -largest) ? -largest : capped);
+            }
+            covariance[k] = v;
         }
     });
 }
 
-template <mean_accuracy Accuracy, std::size_t N, class T>
+template <mean_accuracy Accuracy, std::size_t N, range_check Range = range_check::select, class T>
 EMCV_ALWAYS_INLINE void comoment_step(T* mean, T* mean_low, T* covariance, T* covariance_low, const T* x, T r,
                    comoment_form form) noexcept {
-    comoment_step<Accuracy, N>(mean, mean_low, covariance, covariance_low, x, make_step_weights(r, form));
+    comoment_step<Accuracy, N, Range>(mean, mean_low, covariance, covariance_low, x, make_step_weights(r, form));
 }
 
 }  // namespace detail
@@ -289,7 +312,9 @@ protected:
     /// The recurrence itself (detail::comoment_step), given r = w_n / W_n in [0, 1]; the caller keeps W_n.
     template <mean_accuracy Accuracy = mean_accuracy::plain>
     void step(const vector_type& x, T r, comoment_form form) noexcept {
-        detail::comoment_step<Accuracy, N>(s_.mean.data(), s_.mean_compensation.data(), s_.covariance.data(),
+        // one stream: the range clamps behind predicted branches, off the dependent chain (bit-identical)
+        detail::comoment_step<Accuracy, N, detail::range_check::branch>(
+            s_.mean.data(), s_.mean_compensation.data(), s_.covariance.data(),
                                            s_.covariance_compensation.data(), x.data(), r, form);
     }
 

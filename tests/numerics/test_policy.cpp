@@ -420,3 +420,53 @@ TEMPLATE_TEST_CASE("moving_stats_update reseeds and counts an invalid stored pix
     CHECK(pm == T(7));
     CHECK(pv == T(0));
 }
+
+TEMPLATE_TEST_CASE("one-stream range clamps (behind branches) equal the vectorisable selects bit for bit at the "
+                   "top of the range", "", float, double) {
+    // emcm's push evaluates the overflow clamps of x - mu and of the covariance behind predicted branches
+    // (detail::range_check::branch); the per-pixel batch evaluates them as selects. Both must store the same
+    // bits, above all where the clamps act: opposite signs near max (x - mu overflows) and squares beyond max.
+    using T = TestType;
+    const T top = std::numeric_limits<T>::max();
+    const T eta = T(0.25);
+    std::vector<std::array<T, 2>> xs;
+    std::uint64_t z = 12345;
+    for (int n = 0; n < 400; ++n) {
+        z = z * 6364136223846793005ull + 1442695040888963407ull;
+        const T u = static_cast<T>(static_cast<double>(z >> 11) * 0x1p-53);  // [0, 1)
+        const T big = n % 3 == 0 ? top * (T(0.5) + u / 2) : std::sqrt(top) * T(8) * u;
+        xs.push_back({n % 2 == 0 ? big : -big, n % 5 == 0 ? -big : T(1) + u});
+    }
+    for (const bool compensated : {false, true}) {
+        INFO("compensated " << compensated);
+        emcv::emcm<T, 2> plain(eta);
+        emcv::compensated_emcm<T, 2> comp(eta);
+        std::array<T, 2> mean = xs[0], mean_low{};
+        std::array<T, 3> cov{}, cov_low{};
+        compensated ? (void)comp.push(xs[0]) : (void)plain.push(xs[0]);
+        bool clamped = false;
+        for (std::size_t n = 1; n < xs.size(); ++n) {
+            if (compensated) {
+                comp.push(xs[n]);
+                emcv::detail::comoment_step<emcv::mean_accuracy::compensated, 2, emcv::detail::range_check::select>(
+                    mean.data(), mean_low.data(), cov.data(), cov_low.data(), xs[n].data(), eta,
+                    emcv::comoment_form::current_mean);
+            } else {
+                plain.push(xs[n]);
+                emcv::detail::comoment_step<emcv::mean_accuracy::plain, 2, emcv::detail::range_check::select>(
+                    mean.data(), static_cast<T*>(nullptr), cov.data(), static_cast<T*>(nullptr), xs[n].data(), eta,
+                    emcv::comoment_form::current_mean);
+            }
+            const auto& s = compensated ? comp.state() : plain.state();
+            INFO("step " << n);
+            REQUIRE(std::memcmp(s.mean.data(), mean.data(), sizeof mean) == 0);
+            REQUIRE(std::memcmp(s.covariance.data(), cov.data(), sizeof cov) == 0);
+            if (compensated) {
+                REQUIRE(std::memcmp(s.mean_compensation.data(), mean_low.data(), sizeof mean_low) == 0);
+                REQUIRE(std::memcmp(s.covariance_compensation.data(), cov_low.data(), sizeof cov_low) == 0);
+            }
+            clamped = clamped || cov[0] == top || cov[1] == -top || cov[1] == top;
+        }
+        CHECK(clamped);  // the stream does reach the saturation
+    }
+}
