@@ -19,6 +19,8 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "numerics_support.hpp"
@@ -230,16 +232,21 @@ std::vector<variant<T>> variants() {
 }
 
 /// The exact final statistic of a stream (long double; the recurrences are exact in exact arithmetic, and the
-/// windowed variance is a two-pass sum over the last window).
+/// windowed variance is a two-pass sum over the last window), and the reference's own error bound relative to
+/// it (docs/numerics.md section 2; 0 for the two-pass window, which carries no bound).
+struct exact_result {
+    ld value = 0, relative_bound = 0;
+};
+
 template <class T>
-ld exact_value(const variant<T>& v, const std::vector<T>& x, const std::vector<T>& y, const std::vector<T>& w) {
+exact_result exact_value(const variant<T>& v, const std::vector<T>& x, const std::vector<T>& y, const std::vector<T>& w) {
     if (v.exact == exact_kind::rolling) {
         const std::size_t n = x.size(), k = std::min(rolling_window, n);
         ld mean = 0, s = 0;
         for (std::size_t i = n - k; i < n; ++i) mean += static_cast<ld>(x[i]);
         mean /= static_cast<ld>(k);
         for (std::size_t i = n - k; i < n; ++i) s += (static_cast<ld>(x[i]) - mean) * (static_cast<ld>(x[i]) - mean);
-        return s / static_cast<ld>(k - 1);  // Boost's rolling variance is the unbiased one
+        return {s / static_cast<ld>(k - 1), 0};  // Boost's rolling variance is the unbiased one
     }
     emcv_numerics::schedule sch;
     if (v.exact == exact_kind::exponential) {
@@ -252,39 +259,41 @@ ld exact_value(const variant<T>& v, const std::vector<T>& x, const std::vector<T
     emcv_numerics::reference_with_bound<2> ref(sch, emcv_numerics::long_double_model(), emcv_numerics::long_double_model());
     for (std::size_t i = 0; i < x.size(); ++i)
         ref.push({static_cast<ld>(x[i]), static_cast<ld>(y[i])}, static_cast<ld>(w[i]));
-    ld value = v.stat == statistic::covariance ? ref.cov(1) : ref.cov(0);
-    if (v.name.rfind("Boost variance", 0) == 0 || v.name.rfind("Boost lazy", 0) == 0) {
-        // Boost's cumulative variance is the population one, like ours
-    }
-    return value;
+    // Boost's cumulative variance is the population one, like ours
+    const std::size_t k = v.stat == statistic::covariance ? 1 : 0;
+    const ld value = ref.cov(k);
+    return {value, value != 0 ? ref.cov_bound(k) / std::fabs(value) : ref.cov_bound(k)};
 }
 
+/// Relative error of a variant on a stream, and the relative bound of the reference it is measured against.
 template <class T>
-double relative_error(const variant<T>& v, const std::string& kind) {
+std::pair<double, double> relative_error(const variant<T>& v, const std::string& kind) {
     const pair_stream s = make_stream(kind, sizeof(T) == sizeof(float), error_length);
     const auto x = as<T>(s.x), y = as<T>(s.y), w = as<T>(s.w);
-    const ld exact = exact_value(v, x, y, w);
+    const exact_result exact = exact_value(v, x, y, w);
+    const double bound = static_cast<double>(exact.relative_bound);
     const ld got = static_cast<ld>(v.run(x, y, w));
-    if (!std::isfinite(static_cast<double>(got))) return std::numeric_limits<double>::infinity();
-    if (exact == 0) return static_cast<double>(std::fabs(got));
-    return static_cast<double>(std::fabs(got - exact) / std::fabs(exact));
+    if (!std::isfinite(static_cast<double>(got))) return {std::numeric_limits<double>::infinity(), bound};
+    if (exact.value == 0) return {static_cast<double>(std::fabs(got)), bound};
+    return {static_cast<double>(std::fabs(got - exact.value) / std::fabs(exact.value)), bound};
 }
 
 template <class T>
 void register_scalar(const char* precision) {
     for (const variant<T>& v : variants<T>()) {
-        std::map<std::string, double> errors;
-        for (const char* kind : {"offset", "step", "numacc3"}) errors[kind] = relative_error(v, kind);
+        std::map<std::string, double> errors, bounds;
+        for (const char* kind : {"offset", "step", "numacc3"}) std::tie(errors[kind], bounds[kind]) = relative_error(v, kind);
         const pair_stream s = make_stream("timing", sizeof(T) == sizeof(float), timing_length);
         const auto x = as<T>(s.x), y = as<T>(s.y), w = as<T>(s.w);
         const std::string name = std::string("scalar/") + precision + "/" + v.name;
-        benchmark::RegisterBenchmark(name.c_str(), [v, x, y, w, errors](benchmark::State& state) {
+        benchmark::RegisterBenchmark(name.c_str(), [v, x, y, w, errors, bounds](benchmark::State& state) {
             for (auto _ : state) {
                 T result = v.run(x, y, w);
                 benchmark::DoNotOptimize(result);
             }
             state.counters["updates"] = static_cast<double>(x.size());
             for (const auto& e : errors) state.counters["err_" + e.first] = e.second;
+            for (const auto& b : bounds) state.counters["refbound_" + b.first] = b.second;
             state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * static_cast<std::int64_t>(x.size())));
         });
     }
@@ -370,6 +379,8 @@ void register_batch(const char* precision) {
                 benchmark::ClobberMemory();
             }
             state.counters["updates"] = static_cast<double>(pixels);
+            // distinct bytes touched per frame (3 or 5 arrays), to tell an in-cache run from a DRAM-bound one
+            state.counters["working_set_bytes"] = static_cast<double>((compensated ? 5 : 3) * sizeof(T) * pixels);
             const std::size_t arrays = compensated ? 9 : 5;
             state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(arrays * sizeof(T) * pixels));
         });
@@ -390,6 +401,7 @@ void register_batch(const char* precision) {
                                          benchmark::ClobberMemory();
                                      }
                                      state.counters["updates"] = static_cast<double>(pixels);
+                                     state.counters["working_set_bytes"] = static_cast<double>(3 * sizeof(T) * pixels);
                                      state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(5 * sizeof(T) * pixels));
                                  });
     benchmark::RegisterBenchmark((std::string("batch/") + precision + "/copy compensated (same bytes)").c_str(),
@@ -412,6 +424,7 @@ void register_batch(const char* precision) {
                                          benchmark::ClobberMemory();
                                      }
                                      state.counters["updates"] = static_cast<double>(pixels);
+                                     state.counters["working_set_bytes"] = static_cast<double>(5 * sizeof(T) * pixels);
                                      state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(9 * sizeof(T) * pixels));
                                  });
 }
