@@ -57,12 +57,13 @@ moving_stats_counts moving_stats_batch(T* mean, T* mean_low, T* variance, T* var
         const T ml0 = compensated ? mean_low[i] : T(0), vl0 = compensated ? variance_low[i] : T(0);
         // Compares that NaN fails: a stored pixel this update cannot have produced (NaN, an Inf from an
         // overflowed half-float texture, a negative variance) is invalid.
-        const bool valid = std::fabs(m0) <= largest && v0 >= T(0) && v0 <= largest &&
-                           (!compensated || (std::fabs(ml0) <= largest && std::fabs(vl0) <= largest));
+        // (non-short-circuit & : one straight-line mask per pixel, so that the loop vectorises)
+        const bool valid = (std::fabs(m0) <= largest) & (v0 >= T(0)) & (v0 <= largest) &
+                           (compensated ? (std::fabs(ml0) <= largest) & (std::fabs(vl0) <= largest) : true);
         const bool accept = std::fabs(frame[i]) <= largest;
         // An invalid pixel with a finite frame value is reseeded as a first sample: mean = x, variance 0
         // (the step with r = 1 and outer weight 0 on mean = x gives exactly that).
-        const bool reseed = accept && !valid;
+        const bool reseed = accept & (!valid);
         T m = reseed ? frame[i] : m0, v = reseed ? T(0) : v0;
         T ml = reseed ? T(0) : ml0, vl = reseed ? T(0) : vl0;
         // A rejected (non-finite) frame value becomes the step x = mu with r = 0, which leaves the pixel's
@@ -72,7 +73,7 @@ moving_stats_counts moving_stats_batch(T* mean, T* mean_low, T* variance, T* var
                                 reseed ? T(0) : (accept ? take.outer : T(1))};
         comoment_step<Accuracy, 1>(&m, &ml, &v, &vl, &x, w);
         // an invalid pixel without a usable frame value keeps its stored bits until a finite value reseeds it
-        const bool keep = !accept && !valid;
+        const bool keep = (!accept) & (!valid);
         mean[i] = keep ? m0 : m;
         variance[i] = keep ? v0 : v;
         if (compensated) {

@@ -271,7 +271,9 @@ public:
             return true;
         }
         s_.total_weight = w_total;
-        step(x, weight / w_total, comoment_form::current_mean);
+        // A zero weight (r = 0) leaves mean and covariance as they are; skipping the step also keeps an outer
+        // product d d^T beyond the range from meeting r = 0 (0 * Inf is NaN).
+        if (weight > T(0)) step(x, weight / w_total, comoment_form::current_mean);
         return true;
     }
 

@@ -170,3 +170,19 @@ TEST_CASE("a non-finite first sample does not seed the estimator", "[bad-input]"
     REQUIRE(e.mean(0) == 2.0);
     REQUIRE(e.variance(0) == 0.0);
 }
+
+TEMPLATE_TEST_CASE("a zero-weight sample far from the mean changes nothing and stores no NaN", "[bad-input]", float,
+                   double) {
+    // d^2 overflows for d = 2 sqrt(max): with r = 0 the product 0 * Inf would be NaN.
+    using T = TestType;
+    const T far = std::sqrt(std::numeric_limits<T>::max()) * T(2);
+    emcv::weighted_covariance<T, 2> e;
+    REQUIRE(e.push({T(1), T(2)}));
+    REQUIRE(e.push({T(3), T(4)}));
+    const auto before = e.state();
+    REQUIRE(e.push({-far, far}, T(0), T(0.5)));  // decays the weight, adds nothing
+    REQUIRE(e.total_weight() == T(1));
+    REQUIRE(e.state().mean == before.mean);
+    REQUIRE(e.state().covariance == before.covariance);
+    REQUIRE(emcv::weighted_covariance<T, 2>::valid_state(e.state()));
+}
