@@ -20,6 +20,8 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "bench_cli.hpp"
@@ -96,6 +98,17 @@ struct variant {
     std::function<T(const std::vector<T>&, const std::vector<T>&, const std::vector<T>&)> run;
 };
 
+/// EMCM variance of a stream by the bare step: the first sample seeds (mean = x, variance 0), then r = eta.
+template <emcv::detail::range_check Range, class T>
+T one_stream_step(const std::vector<T>& x, T eta) {
+    T mean = x[0], variance = T(0);
+    for (std::size_t i = 1; i < x.size(); ++i)
+        emcv::detail::comoment_step<emcv::mean_accuracy::plain, 1, Range>(&mean, static_cast<T*>(nullptr), &variance,
+                                                                          static_cast<T*>(nullptr), &x[i], eta,
+                                                                          emcv::comoment_form::current_mean);
+    return variance;
+}
+
 template <class T>
 std::vector<variant<T>> variants() {
     const T eta = static_cast<T>(bench_eta);
@@ -118,6 +131,17 @@ std::vector<variant<T>> variants() {
                        emcv::moving_stats<T> e(eta);
                        for (T v : x) e.push(v);
                        return e.variance();
+                   }});
+    // The one-stream step alone (no finiteness test, no count), with the range clamps of x - mu and of the
+    // variance evaluated as selects (the vectorisable form the batch uses, on the dependent chain) and behind
+    // predicted branches (the form emcm's push uses since issue 12): same results, side by side in one run.
+    out.push_back({"emcm step, range clamps as selects", "exponential variance", statistic::variance,
+                   exact_kind::exponential, [eta](const V& x, const V&, const V&) {
+                       return one_stream_step<emcv::detail::range_check::select>(x, eta);
+                   }});
+    out.push_back({"emcm step, range clamps behind branches", "exponential variance", statistic::variance,
+                   exact_kind::exponential, [eta](const V& x, const V&, const V&) {
+                       return one_stream_step<emcv::detail::range_check::branch>(x, eta);
                    }});
     out.push_back({"raw moments (exponential E[x^2]-E[x]^2)", "exponential variance", statistic::variance,
                    exact_kind::exponential, [eta](const V& x, const V&, const V&) {
@@ -210,16 +234,21 @@ std::vector<variant<T>> variants() {
 }
 
 /// The exact final statistic of a stream (long double; the recurrences are exact in exact arithmetic, and the
-/// windowed variance is a two-pass sum over the last window).
+/// windowed variance is a two-pass sum over the last window), and the reference's own error bound relative to
+/// it (docs/numerics.md section 2; 0 for the two-pass window, which carries no bound).
+struct exact_result {
+    ld value = 0, relative_bound = 0;
+};
+
 template <class T>
-ld exact_value(const variant<T>& v, const std::vector<T>& x, const std::vector<T>& y, const std::vector<T>& w) {
+exact_result exact_value(const variant<T>& v, const std::vector<T>& x, const std::vector<T>& y, const std::vector<T>& w) {
     if (v.exact == exact_kind::rolling) {
         const std::size_t n = x.size(), k = std::min(rolling_window, n);
         ld mean = 0, s = 0;
         for (std::size_t i = n - k; i < n; ++i) mean += static_cast<ld>(x[i]);
         mean /= static_cast<ld>(k);
         for (std::size_t i = n - k; i < n; ++i) s += (static_cast<ld>(x[i]) - mean) * (static_cast<ld>(x[i]) - mean);
-        return s / static_cast<ld>(k - 1);  // Boost's rolling variance is the unbiased one
+        return {s / static_cast<ld>(k - 1), 0};  // Boost's rolling variance is the unbiased one
     }
     emcv_numerics::schedule sch;
     if (v.exact == exact_kind::exponential) {
@@ -232,39 +261,41 @@ ld exact_value(const variant<T>& v, const std::vector<T>& x, const std::vector<T
     emcv_numerics::reference_with_bound<2> ref(sch, emcv_numerics::long_double_model(), emcv_numerics::long_double_model());
     for (std::size_t i = 0; i < x.size(); ++i)
         ref.push({static_cast<ld>(x[i]), static_cast<ld>(y[i])}, static_cast<ld>(w[i]));
-    ld value = v.stat == statistic::covariance ? ref.cov(1) : ref.cov(0);
-    if (v.name.rfind("Boost variance", 0) == 0 || v.name.rfind("Boost lazy", 0) == 0) {
-        // Boost's cumulative variance is the population one, like ours
-    }
-    return value;
+    // Boost's cumulative variance is the population one, like ours
+    const std::size_t k = v.stat == statistic::covariance ? 1 : 0;
+    const ld value = ref.cov(k);
+    return {value, value != 0 ? ref.cov_bound(k) / std::fabs(value) : ref.cov_bound(k)};
 }
 
+/// Relative error of a variant on a stream, and the relative bound of the reference it is measured against.
 template <class T>
-double relative_error(const variant<T>& v, const std::string& kind) {
+std::pair<double, double> relative_error(const variant<T>& v, const std::string& kind) {
     const pair_stream s = make_stream(kind, sizeof(T) == sizeof(float), error_length);
     const auto x = as<T>(s.x), y = as<T>(s.y), w = as<T>(s.w);
-    const ld exact = exact_value(v, x, y, w);
+    const exact_result exact = exact_value(v, x, y, w);
+    const double bound = static_cast<double>(exact.relative_bound);
     const ld got = static_cast<ld>(v.run(x, y, w));
-    if (!std::isfinite(static_cast<double>(got))) return std::numeric_limits<double>::infinity();
-    if (exact == 0) return static_cast<double>(std::fabs(got));
-    return static_cast<double>(std::fabs(got - exact) / std::fabs(exact));
+    if (!std::isfinite(static_cast<double>(got))) return {std::numeric_limits<double>::infinity(), bound};
+    if (exact.value == 0) return {static_cast<double>(std::fabs(got)), bound};
+    return {static_cast<double>(std::fabs(got - exact.value) / std::fabs(exact.value)), bound};
 }
 
 template <class T>
 void register_scalar(const char* precision) {
     for (const variant<T>& v : variants<T>()) {
-        std::map<std::string, double> errors;
-        for (const char* kind : {"offset", "step", "numacc3"}) errors[kind] = relative_error(v, kind);
+        std::map<std::string, double> errors, bounds;
+        for (const char* kind : {"offset", "step", "numacc3"}) std::tie(errors[kind], bounds[kind]) = relative_error(v, kind);
         const pair_stream s = make_stream("timing", sizeof(T) == sizeof(float), timing_length);
         const auto x = as<T>(s.x), y = as<T>(s.y), w = as<T>(s.w);
         const std::string name = std::string("scalar/") + precision + "/" + v.name;
-        benchmark::RegisterBenchmark(name.c_str(), [v, x, y, w, errors](benchmark::State& state) {
+        benchmark::RegisterBenchmark(name.c_str(), [v, x, y, w, errors, bounds](benchmark::State& state) {
             for (auto _ : state) {
                 T result = v.run(x, y, w);
                 benchmark::DoNotOptimize(result);
             }
             state.counters["updates"] = static_cast<double>(x.size());
             for (const auto& e : errors) state.counters["err_" + e.first] = e.second;
+            for (const auto& b : bounds) state.counters["refbound_" + b.first] = b.second;
             state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * static_cast<std::int64_t>(x.size())));
         });
     }
@@ -313,7 +344,7 @@ constexpr std::size_t pixels = 1920 * 1080;
 template <class T>
 [[gnu::noinline]] std::size_t batch_update(T* mean, T* mean_low, T* variance, T* variance_low, const T* frame,
                                            std::size_t count, T eta) {
-    return emcv::moving_stats_update(mean, mean_low, variance, variance_low, frame, count, eta);
+    return emcv::moving_stats_update(mean, mean_low, variance, variance_low, frame, count, eta).rejected;
 }
 
 template <class T>
@@ -350,6 +381,8 @@ void register_batch(const char* precision) {
                 benchmark::ClobberMemory();
             }
             state.counters["updates"] = static_cast<double>(pixels);
+            // distinct bytes touched per frame (3 or 5 arrays), to tell an in-cache run from a DRAM-bound one
+            state.counters["working_set_bytes"] = static_cast<double>((compensated ? 5 : 3) * sizeof(T) * pixels);
             const std::size_t arrays = compensated ? 9 : 5;
             state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(arrays * sizeof(T) * pixels));
         });
@@ -370,6 +403,7 @@ void register_batch(const char* precision) {
                                          benchmark::ClobberMemory();
                                      }
                                      state.counters["updates"] = static_cast<double>(pixels);
+                                     state.counters["working_set_bytes"] = static_cast<double>(3 * sizeof(T) * pixels);
                                      state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(5 * sizeof(T) * pixels));
                                  });
     benchmark::RegisterBenchmark((std::string("batch/") + precision + "/copy compensated (same bytes)").c_str(),
@@ -392,6 +426,7 @@ void register_batch(const char* precision) {
                                          benchmark::ClobberMemory();
                                      }
                                      state.counters["updates"] = static_cast<double>(pixels);
+                                     state.counters["working_set_bytes"] = static_cast<double>(5 * sizeof(T) * pixels);
                                      state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(9 * sizeof(T) * pixels));
                                  });
 }

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Regenerates the tables of docs/accuracy-vs-time.md (and the raw-moment table of docs/numerics.md) from
-one run of emcv-bench.
+"""Regenerates the tables of docs/accuracy-vs-time.md (and the raw-moment table of docs/numerics.md and the
+batch figures quoted in docs/integration.md) from one run of emcv-bench.
 
 Usage (from the repository root, after building emcv-bench):
     /usr/bin/python3 scripts/bench_tables.py [--bench build/bin/emcv-bench] [--min-time 0.1] [--repetitions 3]
@@ -19,6 +19,7 @@ import tempfile
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DOC_TIME = os.path.join(ROOT, "docs", "accuracy-vs-time.md")
 DOC_NUMERICS = os.path.join(ROOT, "docs", "numerics.md")
+DOC_INTEGRATION = os.path.join(ROOT, "docs", "integration.md")
 
 # which Boost variant a variant of ours is compared with (same statistic, same stream)
 BOOST_EQUIVALENT = {
@@ -67,6 +68,16 @@ def fmt_err(e):
     return f"**{s}**" if e >= 1e-2 else s
 
 
+def fmt_cell(b, kind):
+    """An error cell. Where the measured error is not above the reference's own bound, the difference cannot
+    be told from the reference's error: the cell then gives the certified upper bound, error + bound, as
+    "<= x" instead of a value."""
+    e, bound = b.get("err_" + kind), b.get("refbound_" + kind)
+    if e is not None and bound is not None and bound > 0 and e == e and e <= bound:
+        return f"<= {e + bound:.1e}"
+    return fmt_err(e)
+
+
 def scalar_table(rows, precision):
     lines = ["| variant | ns / update | rel. error: offset | rel. error: light step | "
              "rel. error: NumAcc3 |", "|---|---:|---:|---:|---:|"]
@@ -76,8 +87,8 @@ def scalar_table(rows, precision):
             continue
         variant = name[len(prefix):]
         ns = b["real_ns"] / b["updates"]
-        lines.append(f"| {variant} | {ns:.2f} | {fmt_err(b.get('err_offset'))} | "
-                     f"{fmt_err(b.get('err_step'))} | {fmt_err(b.get('err_numacc3'))} |")
+        lines.append(f"| {variant} | {ns:.2f} | {fmt_cell(b, 'offset')} | "
+                     f"{fmt_cell(b, 'step')} | {fmt_cell(b, 'numacc3')} |")
     return "\n".join(lines)
 
 
@@ -134,19 +145,115 @@ def raw_table(rows):
                 lz = rows.get(f"scalar/{precision}/Boost lazy_variance (raw moments)")
                 if a is None or r is None:
                     continue
-                boost_cells = (f"Boost lazy_variance | {fmt_err(lz.get('err_' + kind))}"
+                boost_cells = (f"Boost lazy_variance | {fmt_cell(lz, kind)}"
                                if lz is not None and stat == "cumulative variance" else "- | -")
-                lines.append(f"| {precision} | {stat}, {kind} | {ours} | {fmt_err(a.get('err_' + kind))} | "
-                             f"{raw} | {fmt_err(r.get('err_' + kind))} | {boost_cells} |")
+                lines.append(f"| {precision} | {stat}, {kind} | {ours} | {fmt_cell(a, kind)} | "
+                             f"{raw} | {fmt_cell(r, kind)} | {boost_cells} |")
     return "\n".join(lines)
 
 
-def context_line(report, command):
+def largest_cache(report):
+    """(size in bytes, level) of the largest data or unified cache the benchmark reports, or None."""
+    caches = [(x.get("size", 0), x.get("level", "?")) for x in report.get("context", {}).get("caches", [])
+              if x.get("type") != "Instruction"]
+    return max(caches) if caches else None
+
+
+def copy_bound_sentence(report, rows):
+    """Says whether the batch's copy bound is an in-cache copy: its working set against the largest cache."""
+    sets = [b["working_set_bytes"] for n, b in rows.items() if n.startswith("batch/") and "working_set_bytes" in b]
+    largest = largest_cache(report)
+    if not sets or not largest:
+        return "The batch's working set against the cache sizes is unknown (no cache or working-set report)."
+    lo, hi = min(sets) / 2**20, max(sets) / 2**20
+    cache, level = largest
+    mib = cache / 2**20
+    if max(sets) <= cache:
+        return (f"The batch's working set (the distinct arrays of one frame, {lo:.0f} to {hi:.0f} MiB) fits the "
+                f"largest reported cache (L{level}, {mib:.0f} MiB): its \"copy bound\" is an in-cache copy, faster than "
+                f"a copy from DRAM would be.")
+    if min(sets) > cache:
+        return (f"The batch's working set ({lo:.0f} to {hi:.0f} MiB) exceeds the largest reported cache "
+                f"({mib:.0f} MiB): its \"copy bound\" is a copy through DRAM.")
+    return (f"The batch's working set ({lo:.0f} to {hi:.0f} MiB) straddles the largest reported cache ({mib:.0f} MiB): "
+            f"the copy bound is an in-cache copy for the smaller kernels and a DRAM copy for the larger.")
+
+
+def context_line(report, command, rows):
     c = report.get("context", {})
     caches = ", ".join(f"L{x['level']} {x['size'] // 1024} KiB" for x in c.get("caches", []) if x.get("type") != "Instruction")
     return (f"Measured by `{command}` on {c.get('num_cpus', '?')} CPUs at {c.get('mhz_per_cpu', '?')} MHz "
             f"({caches}), load average {', '.join(f'{x:.2f}' for x in c.get('load_avg', []))} at the start, "
-            f"Google Benchmark library built as {c.get('library_build_type', '?')}, {c.get('date', '')}.")
+            f"Google Benchmark library built as {c.get('library_build_type', '?')}, {c.get('date', '')}. "
+            + copy_bound_sentence(report, rows))
+
+
+def per_update(rows, name):
+    b = rows.get(name)
+    return None if b is None else b["real_ns"] / b["updates"]
+
+
+def reference_bound_sentence(rows):
+    parts, unresolved = [], 0
+    for precision in ("float", "double"):
+        worst = {}
+        for name, b in rows.items():
+            if not name.startswith(f"scalar/{precision}/"):
+                continue
+            for kind in ("offset", "step", "numacc3"):
+                v = b.get("refbound_" + kind)
+                if v is not None:
+                    worst[kind] = max(worst.get(kind, 0.0), v)
+                    e = b.get("err_" + kind)
+                    unresolved += 1 if e is not None and v > 0 and e <= v else 0
+        if worst:
+            parts.append(f"{precision}: " + ", ".join(f"{k} {worst[k]:.1e}" for k in ("offset", "step", "numacc3")
+                                                      if k in worst))
+    if not parts:
+        return "(the benchmark reported no reference bounds)"
+    return (f"That reference carries its own a-priori error bound (docs/numerics.md section 2). Relative to the "
+            f"exact value, the largest over the variants is {'; '.join(parts)} (Boost's rolling window uses a "
+            f"two-pass sum without a bound). {unresolved} error cells are not above their reference's bound; "
+            f"such a cell gives the certified upper bound, measured difference + reference bound, as \"<= x\".")
+
+
+def compensated_cost(rows, fractions):
+    lines = ["| precision | compensated_emcm / emcm (one stream) | compensated batch / plain batch | "
+             "plain batch, fraction of its copy | compensated batch, fraction of its own copy |",
+             "|---|---:|---:|---:|---:|"]
+    for p in ("float", "double"):
+        a, b = per_update(rows, f"scalar/{p}/compensated_emcm"), per_update(rows, f"scalar/{p}/emcm")
+        c, d = rows.get(f"batch/{p}/moving_stats_update compensated"), rows.get(f"batch/{p}/moving_stats_update")
+        if None in (a, b, c, d):
+            continue
+        lines.append(f"| {p} | {a / b:.1f}x | {c['real_ns'] / d['real_ns']:.1f}x | "
+                     f"{100 * fractions.get((p, 'moving_stats_update'), 0):.0f}% | "
+                     f"{100 * fractions.get((p, 'moving_stats_update compensated'), 0):.0f}% |")
+    return "\n".join(lines)
+
+
+def one_stream(rows):
+    lines = ["| precision | step, clamps as selects (ns) | step, clamps behind branches (ns) | selects / branches | "
+             "emcm push (ns) |", "|---|---:|---:|---:|---:|"]
+    for p in ("float", "double"):
+        sel = per_update(rows, f"scalar/{p}/emcm step, range clamps as selects")
+        br = per_update(rows, f"scalar/{p}/emcm step, range clamps behind branches")
+        push = per_update(rows, f"scalar/{p}/emcm")
+        if None in (sel, br, push):
+            continue
+        lines.append(f"| {p} | {sel:.2f} | {br:.2f} | {sel / br:.2f}x | {push:.2f} |")
+    return "\n".join(lines)
+
+
+def integration_batch(fractions, report, rows):
+    f = {k: 100 * v for k, v in fractions.items()}
+    in_cache = "an in-cache copy" if "fits the largest" in copy_bound_sentence(report, rows) else "a copy"
+    return (f"In the last benchmark run the plain update ran at {f.get(('float', 'moving_stats_update'), 0):.0f}% "
+            f"(float) and {f.get(('double', 'moving_stats_update'), 0):.0f}% (double) of the speed of {in_cache} of "
+            f"the same bytes, the compensated one at "
+            f"{f.get(('float', 'moving_stats_update compensated'), 0):.0f}% and "
+            f"{f.get(('double', 'moving_stats_update compensated'), 0):.0f}% of its own (larger) copy "
+            f"([accuracy-vs-time.md](accuracy-vs-time.md), regenerated by `/usr/bin/python3 scripts/bench_tables.py`).")
 
 
 def replace_block(text, name, body, path):
@@ -179,7 +286,10 @@ def main():
         sys.exit("bench_tables.py: the benchmark reported no results")
     batch, fractions = batch_table(rows)
     blocks_time = {
-        "context": context_line(report, command.replace(ROOT + "/", "")),
+        "context": context_line(report, command.replace(ROOT + "/", ""), rows),
+        "reference-bound": reference_bound_sentence(rows),
+        "compensated-cost": compensated_cost(rows, fractions),
+        "one-stream": one_stream(rows),
         "scalar-float": scalar_table(rows, "float"),
         "scalar-double": scalar_table(rows, "double"),
         "batch": batch,
@@ -189,13 +299,19 @@ def main():
         text_time = f.read()
     with open(DOC_NUMERICS) as f:
         text_numerics = f.read()
+    with open(DOC_INTEGRATION) as f:
+        text_integration = f.read()
+    text_integration = replace_block(text_integration, "batch-summary", integration_batch(fractions, report, rows),
+                                     DOC_INTEGRATION)
     for name, body in blocks_time.items():
         text_time = replace_block(text_time, name, body, DOC_TIME)
     text_numerics = replace_block(text_numerics, "raw-moments", raw_table(rows) + "\n\n" + blocks_time["context"],
                                   DOC_NUMERICS)
     write_atomically(DOC_TIME, text_time)
     write_atomically(DOC_NUMERICS, text_numerics)
-    print(f"wrote {os.path.relpath(DOC_TIME, ROOT)} and {os.path.relpath(DOC_NUMERICS, ROOT)}")
+    write_atomically(DOC_INTEGRATION, text_integration)
+    print(f"wrote {os.path.relpath(DOC_TIME, ROOT)}, {os.path.relpath(DOC_NUMERICS, ROOT)} and "
+          f"{os.path.relpath(DOC_INTEGRATION, ROOT)}")
 
 
 if __name__ == "__main__":

@@ -41,7 +41,14 @@ catch2_from=()
 if [ "$codename" = "bookworm" ]; then
   list=/etc/apt/sources.list.d/bookworm-backports.list
   if ! grep -rqs "bookworm-backports" /etc/apt/sources.list /etc/apt/sources.list.d/; then
-    echo "deb http://deb.debian.org/debian bookworm-backports main" | $sudo tee "$list" >/dev/null
+    # backports from the mirror that already serves bookworm main here (a local mirror or proxy included)
+    source "$(dirname "$0")/debian-mirror.sh"
+    mirror=$(debian_mirror_uri bookworm) || {
+      echo "install-deps: cannot add bookworm-backports for Catch2 v3: no apt source serves bookworm main" >&2
+      exit 1
+    }
+    echo "deb $mirror bookworm-backports main" | $sudo tee "$list.tmp" >/dev/null
+    $sudo mv "$list.tmp" "$list"
   fi
   catch2_from=(-t bookworm-backports)
 fi

@@ -16,8 +16,8 @@ namespace emcv {
 /// alpha* = Cov(F, G) / Var(G), Eq. 31.
 ///
 /// Guard: returns 0 when var_g is not above var_floor (this covers 0, negative, NaN and, with the default
-/// floor of the smallest normal number, subnormal variances), when cov_fg is not finite, or when the quotient
-/// overflows. alpha = 0 means "no control variate": the residual is then f itself, whose variance can only
+/// floor of the smallest normal number, subnormal variances; a NaN floor refuses every variance), when cov_fg
+/// is not finite, or when the quotient overflows. alpha = 0 means "no control variate": the residual is then f itself, whose variance can only
 /// over-state what the adaptive sampler needs, never under-state it. A meaningless coefficient divided out of
 /// a vanishing variance would do the opposite. Callers whose G has a known scale pass a relative floor,
 /// for example (1e-6 * |E[G]|)^2, see variance_floor().

@@ -39,7 +39,8 @@ int sample_count(T variance, T target, int n_min, int n_max) {
 
 /// Unreal's USE_TRUE_DISTRIBUTION_VAR variant (off by default there): with g the stored per-sample variance
 /// history (sigma^2_old * N) and eta the history weight, n_est = g (2/eta - 1) and
-/// N = clamp(variance * n_est / target - n_est, n_min, n_max), rounded up.
+/// N = clamp(variance * n_est / target - n_est, n_min, n_max), rounded up. A NaN or Inf history (or variance)
+/// makes the count NaN, which gives n_max, as in sample_count.
 template <class T>
 int sample_count_true_distribution(T variance, T per_sample_history, T eta, T target, int n_min, int n_max) {
     detail::check_budget(target, n_min, n_max, "sample_count_true_distribution");

@@ -98,9 +98,22 @@ constexpr std::pair<std::size_t, std::size_t> packed_row_column(std::size_t k, s
 /// (docs/numerics.md section 1).
 /// Range policy: a difference x - mu that overflows (opposite signs near the top of the range) is clamped
 /// to +-max, so the mean still moves towards x and stays finite, and a covariance beyond the largest finite
-/// T saturates at +-max: finite input never stores Inf or NaN. Every select has constant or already
-/// computed arms (quiet compares, no branch around arithmetic) so that a loop over pixels vectorises.
-template <mean_accuracy Accuracy, std::size_t N, class T>
+/// T saturates at +-max: finite input never stores Inf or NaN.
+/// Where the clamps are evaluated (Range): range_check::select computes every clamp as a select with constant
+/// or already computed arms (quiet compares, no branch around arithmetic) so that a loop over pixels
+/// vectorises. range_check::branch, for one stream, skips each clamp behind a branch that is taken only when
+/// the value is out of range (|v| <= max fails): the clamp is the identity on every in-range value, so the
+/// results are bit-identical, and the predicted branch takes the compare and select off the loop-carried
+/// chain mu -> d -> mu (sub + fma) and Cov -> Cov (docs/accuracy-vs-time.md, "One stream").
+enum class range_check { select, branch };
+
+#if defined(__GNUC__) || defined(__clang__)
+#define EMCV_UNLIKELY(x) __builtin_expect(!!(x), 0)
+#else
+#define EMCV_UNLIKELY(x) (x)
+#endif
+
+template <mean_accuracy Accuracy, std::size_t N, range_check Range = range_check::select, class T>
 EMCV_ALWAYS_INLINE void comoment_step(T* mean, T* mean_low, T* covariance, T* covariance_low, const T* x,
                    const step_weights<T>& w) noexcept {
     constexpr T largest = std::numeric_limits<T>::max();
@@ -112,7 +125,8 @@ EMCV_ALWAYS_INLINE void comoment_step(T* mean, T* mean_low, T* covariance, T* co
         constexpr std::size_t i = decltype(index)::value;
         T mu = mean[i];
         T di = Accuracy == mean_accuracy::compensated ? (x[i] - mu) - mean_low[i] : x[i] - mu;
-        di = std::isgreater(di, largest) ? largest : (std::isless(di, -largest) ? -largest : di);
+        if (Range == range_check::select || EMCV_UNLIKELY(!(std::fabs(di) <= largest)))
+            di = std::isgreater(di, largest) ? largest : (std::isless(di, -largest) ? -largest : di);
         d[i] = di;
         if (Accuracy == mean_accuracy::compensated) {
             T sum, error;
@@ -137,37 +151,46 @@ EMCV_ALWAYS_INLINE void comoment_step(T* mean, T* mean_low, T* covariance, T* co
             const bool above = std::isgreater(e_raw, largest), below = std::isless(e_raw, -largest);
             const T e = above ? largest : (below ? -largest : e_raw);
             T t = (e - c) - low;
-            t = std::isgreater(t, largest) ? largest : (std::isless(t, -largest) ? -largest : t);
+            if (Range == range_check::select || EMCV_UNLIKELY(!(std::fabs(t) <= largest)))
+                t = std::isgreater(t, largest) ? largest : (std::isless(t, -largest) ? -largest : t);
             T sum, error;
             two_sum(c, w.r * t, sum, error);  // sum + error == c + r t exactly
             const T low_new = low + error;
             const T v = sum + low_new;  // renormalise (fast two-sum)
             const T low_renormalised = low_new - (v - sum);
             // an outer product beyond the range saturates the entry, as in the plain form
-            covariance_low[k] = above || below ? T(0) : low_renormalised;
-            covariance[k] = above ? largest : (below ? -largest : v);
+            if (Range == range_check::select || EMCV_UNLIKELY(above || below)) {
+                covariance_low[k] = above || below ? T(0) : low_renormalised;
+                covariance[k] = above ? largest : (below ? -largest : v);
+            } else {
+                covariance_low[k] = low_renormalised;
+                covariance[k] = v;
+            }
         } else {
-            const T v = c + w.r * ((w.outer * d[i]) * d[j] - c);
+            T v = c + w.r * ((w.outer * d[i]) * d[j] - c);
             // saturate, never store Inf (a variance, i == j, is never negative: one compare suffices)
-            const T capped = std::isgreater(v, largest) ? largest : v;
-            covariance[k] = i == j ? capped : (std::isless(capped, -largest) ? -largest : capped);
+            if (Range == range_check::select || EMCV_UNLIKELY(!(std::fabs(v) <= largest))) {
+                const T capped = std::isgreater(v, largest) ? largest : v;
+                v = i == j ? capped : (std::isless(capped, -largest) ? -largest : capped);
+            }
+            covariance[k] = v;
         }
     });
 }
 
-template <mean_accuracy Accuracy, std::size_t N, class T>
+template <mean_accuracy Accuracy, std::size_t N, range_check Range = range_check::select, class T>
 EMCV_ALWAYS_INLINE void comoment_step(T* mean, T* mean_low, T* covariance, T* covariance_low, const T* x, T r,
                    comoment_form form) noexcept {
-    comoment_step<Accuracy, N>(mean, mean_low, covariance, covariance_low, x, make_step_weights(r, form));
+    comoment_step<Accuracy, N, Range>(mean, mean_low, covariance, covariance_low, x, make_step_weights(r, form));
 }
 
 }  // namespace detail
 
 /// Streaming weighted mean and covariance matrix of N-dimensional samples.
 ///
-/// Non-finite samples (any component NaN or +-Inf) are rejected: the state is left unchanged, `rejected()`
-/// counts them and push() returns false. This is the one NaN/Inf policy of the whole library.
-/// Invalid arguments (negative or non-finite weight, decay outside [0, 1]) throw std::invalid_argument.
+/// Non-finite samples (any component NaN or +-Inf) and NaN or +Inf weights are rejected: the state is left
+/// unchanged, `rejected()` counts them and push() returns false. This is the one NaN/Inf policy of the whole
+/// library. Invalid arguments (a negative weight, decay outside [0, 1]) throw std::invalid_argument.
 /// Range policy (docs/numerics.md): the mean never overflows (an overflowing difference x - mu is clamped
 /// to +-max, so the mean still moves towards x) and a covariance beyond the largest finite T saturates at
 /// +-max, so the state stays finite for every finite input.
@@ -197,15 +220,24 @@ public:
     weighted_covariance() = default;
     /// Restores a saved (for example, quantised) state.
     /// Throws std::invalid_argument when the state is not finite (a half-float texture that overflowed to
-    /// Inf), has a negative total weight or a negative variance: a poisoned history is refused, never used.
+    /// Inf), has a negative total weight or a negative variance, or has count == 0 with anything non-zero
+    /// (see valid_state): a poisoned or half-restored history is refused, never used.
     explicit weighted_covariance(const state_type& s) : s_(s) {
         detail::require(valid_state(s), "weighted_covariance",
-                        "restored state must be finite, with total_weight >= 0 and every variance >= 0");
+                        "restored state must be finite, with total_weight >= 0, every variance >= 0, and "
+                        "all zero when count == 0");
     }
 
-    /// True when s is a state this class could have produced: finite, W >= 0, variances >= 0.
+    /// True when s is a state this class could have produced: finite, W >= 0, variances >= 0, and, when
+    /// count == 0, empty (W, mean, covariance and their low parts all 0). A texture that stores only a mean
+    /// and a covariance is restored with count >= 1 (and W = 1 for the exponential estimators): with
+    /// count == 0 the next push would seed the mean and silently discard what was stored.
     static bool valid_state(const state_type& s) noexcept {
         if (!std::isfinite(s.total_weight) || s.total_weight < T(0)) return false;
+        if (s.count == 0 && !(s.total_weight == T(0) && detail::all_zero(s.mean) &&
+                              detail::all_zero(s.mean_compensation) && detail::all_zero(s.covariance) &&
+                              detail::all_zero(s.covariance_compensation)))
+            return false;
         if (!detail::all_finite(s.mean) || !detail::all_finite(s.mean_compensation)) return false;
         if (!detail::all_finite(s.covariance) || !detail::all_finite(s.covariance_compensation)) return false;
         for (std::size_t i = 0; i < N; ++i)
@@ -215,15 +247,17 @@ public:
 
     /// Adds x with weight w after scaling every earlier weight by decay.
     /// @param [in] x      the sample
-    /// @param [in] weight w_{n,n} >= 0
+    /// @param [in] weight w_{n,n} >= 0; a NaN or +Inf weight (an importance weight whose pdf reached 0) is
+    ///                    treated like a non-finite sample: rejected and counted
     /// @param [in] decay  in [0, 1]: 1 keeps old samples at full weight, 0 forgets them
-    /// @returns false (and leaves the state untouched) when x is not finite.
+    /// @returns false (and leaves the state untouched, rejected() + 1) when x or the weight is not finite.
+    /// push(x, 0, 0) forgets everything and gives x no weight: the estimator then holds nothing (W, mean and
+    /// covariance 0; count() still counts the call), and the next push with a positive weight seeds it.
     bool push(const vector_type& x, T weight = T(1), T decay = T(1)) {
-        // one compare pair each: NaN fails both, +Inf fails the upper one
-        detail::require(weight >= T(0) && weight <= std::numeric_limits<T>::max(), "weighted_covariance::push",
-                        "weight must be finite and >= 0");
+        // NaN fails neither test here (it is rejected below); -Inf is negative
+        detail::require(!(weight < T(0)), "weighted_covariance::push", "weight must be >= 0");
         detail::require(decay >= T(0) && decay <= T(1), "weighted_covariance::push", "decay must lie in [0, 1]");
-        if (!detail::all_finite(x)) {
+        if (!detail::all_finite(x) || !(weight <= std::numeric_limits<T>::max())) {
             ++s_.rejected;
             return false;
         }
@@ -238,7 +272,9 @@ public:
             return true;
         }
         s_.total_weight = w_total;
-        step(x, weight / w_total, comoment_form::current_mean);
+        // A zero weight (r = 0) leaves mean and covariance as they are; skipping the step also keeps an outer
+        // product d d^T beyond the range from meeting r = 0 (0 * Inf is NaN).
+        if (weight > T(0)) step(x, weight / w_total, comoment_form::current_mean);
         return true;
     }
 
@@ -281,7 +317,9 @@ protected:
     /// The recurrence itself (detail::comoment_step), given r = w_n / W_n in [0, 1]; the caller keeps W_n.
     template <mean_accuracy Accuracy = mean_accuracy::plain>
     void step(const vector_type& x, T r, comoment_form form) noexcept {
-        detail::comoment_step<Accuracy, N>(s_.mean.data(), s_.mean_compensation.data(), s_.covariance.data(),
+        // one stream: the range clamps behind predicted branches, off the dependent chain (bit-identical)
+        detail::comoment_step<Accuracy, N, detail::range_check::branch>(
+            s_.mean.data(), s_.mean_compensation.data(), s_.covariance.data(),
                                            s_.covariance_compensation.data(), x.data(), r, form);
     }
 

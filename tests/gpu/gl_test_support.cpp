@@ -3,6 +3,10 @@
 
 #include <catch2/catch_test_macros.hpp>
 
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+
 // LeakSanitizer: Mesa keeps some allocations until exit (driver caches, LLVM); suppress reports whose stack goes
 // through Mesa's libraries only. Harmless when not built with sanitizers.
 extern "C" const char* __lsan_default_suppressions() {
@@ -10,6 +14,17 @@ extern "C" const char* __lsan_default_suppressions() {
 }
 
 namespace emcv::test {
+
+bool gl_required() {
+    const char* v = std::getenv("EMCV_REQUIRE_GL");
+    return v != nullptr && std::strcmp(v, "1") == 0;
+}
+
+void skip_without_gl(const std::string& why) {
+    if (gl_required()) FAIL("EMCV_REQUIRE_GL=1 but no EGL display: this GL test cannot run\n" << why);
+    SKIP("skipped: no EGL display (set EMCV_REQUIRE_GL=1 to make this a failure)\n" << why);
+    throw std::logic_error("unreachable: SKIP returned");  // SKIP and FAIL throw; keeps [[noreturn]] honest
+}
 
 emcv::gl::context context_or_skip() {
     std::optional<emcv::gl::context> ctx;
@@ -22,7 +37,7 @@ emcv::gl::context context_or_skip() {
         why = e.what();
     }
     if (!ctx) {
-        if (no_display) SKIP("skipped: no EGL display\n" << why);
+        if (no_display) skip_without_gl(why);
         FAIL(why);
     }
     return std::move(*ctx);

@@ -31,10 +31,27 @@ TEST_CASE("emcv-glinfo prints the context it gets") {
     const emcv_test::command_result r = run(EMCV_GLINFO);
     if (r.exit_code != 0 && r.output().find("platforms tried") != std::string::npos &&
         r.output().find("no OpenGL") == std::string::npos)
-        SKIP("skipped: no EGL display\n" << r.output());
+        emcv::test::skip_without_gl(r.output());
     INFO(r.output());
     CHECK(r.exit_code == 0);
     CHECK_THAT(r.output(), ContainsSubstring("platform: ") && ContainsSubstring("version:  4."));
+}
+
+TEST_CASE("without a display a context test skips by hand and fails under EMCV_REQUIRE_GL=1") {
+    // Runs one context test of this executable again with no platform to try (EMCV_GL_PLATFORMS=none).
+    const std::string test = " '[needs-context]' ";
+    const emcv_test::command_result by_hand =
+        run(std::string("env -u EMCV_REQUIRE_GL EMCV_GL_PLATFORMS=none ") + EMCV_GL_ERRORS_EXE + test);
+    INFO(by_hand.output());
+    CHECK_THAT(by_hand.output(), ContainsSubstring("skipped: no EGL display"));
+    CHECK_THAT(by_hand.output(), ContainsSubstring("platforms tried: none"));  // the reason travels with the skip
+    CHECK(by_hand.output().find("FAILED") == std::string::npos);
+    const emcv_test::command_result required =
+        run(std::string("EMCV_REQUIRE_GL=1 EMCV_GL_PLATFORMS=none ") + EMCV_GL_ERRORS_EXE + test);
+    INFO(required.output());
+    CHECK(required.exit_code != 0);
+    CHECK_THAT(required.output(), ContainsSubstring("EMCV_REQUIRE_GL=1 but no EGL display"));
+    CHECK_THAT(required.output(), ContainsSubstring("FAILED"));
 }
 
 TEST_CASE("no EGL display: the error lists every platform tried and why it failed") {
@@ -105,7 +122,7 @@ TEST_CASE("a missing shader file is a clear error before any GL call") {
                       ContainsSubstring("shader file not found") && ContainsSubstring("missing.comp.glsl"));
 }
 
-TEST_CASE("KHR_debug counts GL errors so that programs can exit non-zero") {
+TEST_CASE("KHR_debug counts GL errors so that programs can exit non-zero", "[needs-context]") {
     auto ctx = emcv::test::context_or_skip();
     emcv::gl::debug_messenger debug;
     CHECK(debug.error_count() == 0);

@@ -171,7 +171,9 @@ TEMPLATE_TEST_CASE("invalid eta, weight and decay are refused with std::invalid_
     }
     emcv::weighted_covariance<T, 1> w;
     CHECK_THROWS_AS((w.push(T(1), T(-1))), std::invalid_argument);
-    CHECK_THROWS_AS((w.push(T(1), std::numeric_limits<T>::infinity())), std::invalid_argument);
+    CHECK_THROWS_AS((w.push(T(1), -std::numeric_limits<T>::infinity())), std::invalid_argument);
+    CHECK_FALSE(w.push(T(1), std::numeric_limits<T>::infinity()));  // rejected and counted, not thrown
+    CHECK(w.rejected() == 1);
     CHECK_THROWS_AS((w.push(T(1), T(1), T(1.5))), std::invalid_argument);
     CHECK(w.count() == 0);
 }
@@ -289,9 +291,11 @@ TEMPLATE_TEST_CASE("moving_stats_update on a structure-of-arrays history is movi
         }
         expected_rejections += rejected_now;
         CHECK(emcv::moving_stats_update(mean.data(), static_cast<T*>(nullptr), variance.data(), static_cast<T*>(nullptr),
-                                        frame.data(), pixels, eta) == rejected_now);
+                                        frame.data(), pixels, eta)
+                  .rejected == rejected_now);
         CHECK(emcv::moving_stats_update(c_mean.data(), mean_low.data(), c_variance.data(), variance_low.data(),
-                                        frame.data(), pixels, eta) == rejected_now);
+                                        frame.data(), pixels, eta)
+                  .rejected == rejected_now);
         for (std::size_t p = 0; p < pixels; ++p) {
             T m = reference[p].mean(), v = reference[p].variance();
             CHECK(std::memcmp(&m, &mean[p], sizeof m) == 0);
@@ -313,4 +317,156 @@ TEMPLATE_TEST_CASE("moving_stats_update on a structure-of-arrays history is movi
     CHECK_THROWS_AS((emcv::moving_stats_update(mean.data(), mean_low.data(), variance.data(), static_cast<T*>(nullptr),
                                                frame.data(), pixels, eta)),
                     std::invalid_argument);
+}
+
+TEMPLATE_TEST_CASE("scalar moving_stats_update forms equal emcm<T, 1> and compensated_emcm<T, 1> after every call",
+                   "", float, double) {
+    // The scalar forms share no code path with the classes' push (push_normalised); compare every stored part bit
+    // for bit, including the low parts, so that a different comoment form or a dropped low part is caught.
+    using T = TestType;
+    const T eta = T(0.05);
+    const auto s = offset_stream<T>(sizeof(T) == sizeof(float) ? 1e4 : 1e9, 0.1, 300, 21);
+    emcv::emcm<T, 1> plain(eta);
+    emcv::compensated_emcm<T, 1> compensated(eta);
+    T m = s.x[0][0], v = T(0), cm = s.x[0][0], cml = T(0), cv = T(0), cvl = T(0);  // the caller seeds
+    plain.push(s.x[0][0]);
+    compensated.push(s.x[0][0]);
+    bool low_parts_used = false;
+    for (std::size_t n = 1; n < s.x.size(); ++n) {
+        const T x = n % 13 == 5 ? std::numeric_limits<T>::quiet_NaN() : s.x[n][0];
+        const bool accepted = plain.push(x);
+        CHECK(compensated.push(x) == accepted);
+        CHECK(emcv::moving_stats_update(m, v, x, eta) == accepted);
+        CHECK(emcv::moving_stats_update(cm, cml, cv, cvl, x, eta) == accepted);
+        const auto& p = plain.state();
+        const auto& c = compensated.state();
+        INFO("step " << n);
+        CHECK(std::memcmp(&p.mean[0], &m, sizeof m) == 0);
+        CHECK(std::memcmp(&p.covariance[0], &v, sizeof v) == 0);
+        CHECK(std::memcmp(&c.mean[0], &cm, sizeof cm) == 0);
+        CHECK(std::memcmp(&c.mean_compensation[0], &cml, sizeof cml) == 0);
+        CHECK(std::memcmp(&c.covariance[0], &cv, sizeof cv) == 0);
+        CHECK(std::memcmp(&c.covariance_compensation[0], &cvl, sizeof cvl) == 0);
+        low_parts_used = low_parts_used || (cml != T(0) && cvl != T(0));
+    }
+    CHECK(low_parts_used);  // the offset stream exercises both low parts
+    CHECK(plain.rejected() > 0);
+}
+
+TEMPLATE_TEST_CASE("a restored state with a non-finite low part is refused", "", float, double) {
+    using T = TestType;
+    emcv::compensated_emcm<T, 1> e(T(0.2));
+    for (T x : {T(1e4), T(1e4 + 0.25), T(1e4 - 0.5)}) e.push(x);
+    REQUIRE_NOTHROW((emcv::compensated_emcm<T, 1>(T(0.2), e.state())));
+    for (T bad : {std::numeric_limits<T>::quiet_NaN(), std::numeric_limits<T>::infinity()}) {
+        auto low_cov = e.state();
+        low_cov.covariance_compensation[0] = bad;
+        CHECK_THROWS_AS((emcv::compensated_emcm<T, 1>(T(0.2), low_cov)), std::invalid_argument);
+        CHECK_FALSE(emcv::weighted_covariance<T, 1>::valid_state(low_cov));
+        auto low_mean = e.state();
+        low_mean.mean_compensation[0] = bad;
+        CHECK_THROWS_AS((emcv::compensated_emcm<T, 1>(T(0.2), low_mean)), std::invalid_argument);
+    }
+}
+
+TEMPLATE_TEST_CASE("moving_stats_update reseeds and counts an invalid stored pixel, keeps it without a finite value",
+                   "", float, double) {
+    // A half-float history whose variance overflowed to Inf, a NaN that got into the state, a negative variance
+    // (a lossy store): each would stay poisoned for ever (Inf becomes NaN at the next step, and sample_count
+    // maps NaN to n_max). A finite frame value reseeds such a pixel as a first sample and counts it.
+    using T = TestType;
+    const T inf = std::numeric_limits<T>::infinity(), nan = std::numeric_limits<T>::quiet_NaN();
+    const T eta = T(0.25);
+    for (const bool compensated : {false, true}) {
+        //                pixel:  0 valid  1 Inf var   2 NaN mean  3 neg. var  4 Inf mean, NaN frame  5 valid, NaN frame
+        std::vector<T> mean{T(1), T(2), nan, T(4), inf, T(6)};
+        std::vector<T> variance{T(0.5), inf, T(1), T(-1), T(1), T(0.5)};
+        std::vector<T> mean_low(6, T(0)), variance_low(6, T(0));
+        const std::vector<T> frame{T(3), T(10), T(20), T(30), nan, nan};
+        T* ml = compensated ? mean_low.data() : nullptr;
+        T* vl = compensated ? variance_low.data() : nullptr;
+        INFO("compensated " << compensated);
+        const auto counts = emcv::moving_stats_update(mean.data(), ml, variance.data(), vl, frame.data(), 6, eta);
+        CHECK(counts.rejected == 2);
+        CHECK(counts.reseeded == 3);
+        // pixel 0: the ordinary step, mean 1 + 0.25 * 2 = 1.5, variance 0.75 (0.5 + 0.25 * 4) = 1.125
+        CHECK(mean[0] == T(1.5));
+        CHECK(variance[0] == T(1.125));
+        for (std::size_t p = 1; p <= 3; ++p) {  // reseeded: mean = x, variance 0
+            CHECK(mean[p] == frame[p]);
+            CHECK(variance[p] == T(0));
+        }
+        CHECK(std::isinf(mean[4]));  // invalid and no finite value: its stored bits stay, counted as rejected
+        CHECK(variance[4] == T(1));
+        CHECK(mean[5] == T(6));  // valid and rejected: untouched
+        CHECK(variance[5] == T(0.5));
+        // the next finite value reseeds pixel 4 as well
+        const std::vector<T> next{T(3), T(10), T(20), T(30), T(40), T(6)};
+        const auto again = emcv::moving_stats_update(mean.data(), ml, variance.data(), vl, next.data(), 6, eta);
+        CHECK(again.rejected == 0);
+        CHECK(again.reseeded == 1);
+        CHECK(mean[4] == T(40));
+        CHECK(variance[4] == T(0));
+    }
+    // a non-finite low part makes the compensated pixel invalid too
+    T m = T(1), ml = nan, v = T(1), vl = T(0);
+    CHECK(emcv::moving_stats_update(m, ml, v, vl, T(5), eta));
+    CHECK(m == T(5));
+    CHECK(ml == T(0));
+    CHECK(v == T(0));
+    // the scalar plain form follows the same rule
+    T pm = T(2), pv = inf;
+    CHECK(emcv::moving_stats_update(pm, pv, T(7), eta));
+    CHECK(pm == T(7));
+    CHECK(pv == T(0));
+}
+
+TEMPLATE_TEST_CASE("one-stream range clamps (behind branches) equal the vectorisable selects bit for bit at the "
+                   "top of the range", "", float, double) {
+    // emcm's push evaluates the overflow clamps of x - mu and of the covariance behind predicted branches
+    // (detail::range_check::branch); the per-pixel batch evaluates them as selects. Both must store the same
+    // bits, above all where the clamps act: opposite signs near max (x - mu overflows) and squares beyond max.
+    using T = TestType;
+    const T top = std::numeric_limits<T>::max();
+    const T eta = T(0.25);
+    std::vector<std::array<T, 2>> xs;
+    std::uint64_t z = 12345;
+    for (int n = 0; n < 400; ++n) {
+        z = z * 6364136223846793005ull + 1442695040888963407ull;
+        const T u = static_cast<T>(static_cast<double>(z >> 11) * 0x1p-53);  // [0, 1)
+        const T big = n % 3 == 0 ? top * (T(0.5) + u / 2) : std::sqrt(top) * T(8) * u;
+        xs.push_back({n % 2 == 0 ? big : -big, n % 5 == 0 ? -big : T(1) + u});
+    }
+    for (const bool compensated : {false, true}) {
+        INFO("compensated " << compensated);
+        emcv::emcm<T, 2> plain(eta);
+        emcv::compensated_emcm<T, 2> comp(eta);
+        std::array<T, 2> mean = xs[0], mean_low{};
+        std::array<T, 3> cov{}, cov_low{};
+        compensated ? (void)comp.push(xs[0]) : (void)plain.push(xs[0]);
+        bool clamped = false;
+        for (std::size_t n = 1; n < xs.size(); ++n) {
+            if (compensated) {
+                comp.push(xs[n]);
+                emcv::detail::comoment_step<emcv::mean_accuracy::compensated, 2, emcv::detail::range_check::select>(
+                    mean.data(), mean_low.data(), cov.data(), cov_low.data(), xs[n].data(), eta,
+                    emcv::comoment_form::current_mean);
+            } else {
+                plain.push(xs[n]);
+                emcv::detail::comoment_step<emcv::mean_accuracy::plain, 2, emcv::detail::range_check::select>(
+                    mean.data(), static_cast<T*>(nullptr), cov.data(), static_cast<T*>(nullptr), xs[n].data(), eta,
+                    emcv::comoment_form::current_mean);
+            }
+            const auto& s = compensated ? comp.state() : plain.state();
+            INFO("step " << n);
+            REQUIRE(std::memcmp(s.mean.data(), mean.data(), sizeof mean) == 0);
+            REQUIRE(std::memcmp(s.covariance.data(), cov.data(), sizeof cov) == 0);
+            if (compensated) {
+                REQUIRE(std::memcmp(s.mean_compensation.data(), mean_low.data(), sizeof mean_low) == 0);
+                REQUIRE(std::memcmp(s.covariance_compensation.data(), cov_low.data(), sizeof cov_low) == 0);
+            }
+            clamped = clamped || cov[0] == top || cov[1] == -top || cov[1] == top;
+        }
+        CHECK(clamped);  // the stream does reach the saturation
+    }
 }

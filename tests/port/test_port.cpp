@@ -4,6 +4,7 @@
 // -ffp-contract=off). Burley sampling is checked against the CDF and a double evaluation of the formulas.
 #include <catch2/catch_test_macros.hpp>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -227,4 +228,45 @@ TEST_CASE("hash and low-discrepancy helpers") {
     int worst = 0;
     for (int c : cells) worst = std::max(worst, c);
     CHECK(worst <= 3);
+}
+
+TEST_CASE("port pushes reseed an invalid stored state as moving_stats_update does, and count it") {
+    // A state read back from a texture whose variance overflowed to Inf, or that holds a NaN or a negative
+    // variance: the port replaces it by the next finite sample (mean = x, variance 0), bit for bit as the C++
+    // per-pixel form, and counts it; a non-finite sample leaves it (and the count) alone.
+    const float inf = std::numeric_limits<float>::infinity();
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const std::array<std::array<float, 2>, 3> broken{{{2.0f, inf}, {nan, 1.0f}, {4.0f, -1.0f}}};
+    for (const auto& stored : broken) {
+        port::EmcvMovingStats s = port::emcv_moving_stats_init();
+        s.mean = stored[0];
+        s.variance = stored[1];
+        s.count = 7u;
+        REQUIRE_FALSE(port::emcv_moving_stats_push(s, nan, 0.05f));
+        CHECK(s.reseeded == 0u);
+        float mean = stored[0], variance = stored[1];
+        REQUIRE(port::emcv_moving_stats_push(s, 3.5f, 0.05f));
+        REQUIRE(emcv::moving_stats_update(mean, variance, 3.5f, 0.05f));
+        CHECK(bits(s.mean) == bits(mean));
+        CHECK(bits(s.variance) == bits(variance));
+        CHECK(s.mean == 3.5f);
+        CHECK(s.variance == 0.0f);
+        CHECK(s.reseeded == 1u);
+        CHECK(s.count == 1u);
+        REQUIRE(port::emcv_moving_stats_push(s, 4.5f, 0.5f));  // and the history continues: mean 4, var 0.25
+        CHECK(s.mean == 4.0f);
+        CHECK(s.variance == 0.25f);
+    }
+    port::EmcvEmcm2 e = port::emcv_emcm2_init();
+    e.mean = glm::vec2(1.0f, 2.0f);
+    e.cov = glm::vec3(inf, 0.0f, 1.0f);  // C_ff overflowed
+    e.count = 3u;
+    REQUIRE(port::emcv_emcm2_push(e, glm::vec2(5.0f, 6.0f), 0.05f));
+    CHECK(e.mean == glm::vec2(5.0f, 6.0f));
+    CHECK(e.cov == glm::vec3(0.0f));
+    CHECK(e.reseeded == 1u);
+    e.cov = glm::vec3(0.5f, nan, 0.5f);  // a NaN cross term
+    REQUIRE(port::emcv_emcm2_push(e, glm::vec2(7.0f, 8.0f), 0.05f));
+    CHECK(e.mean == glm::vec2(7.0f, 8.0f));
+    CHECK(e.reseeded == 2u);
 }

@@ -110,10 +110,14 @@ TEST_CASE("moving_stats variance has the EMCM expectation", "[stats]") {
 }
 
 TEST_CASE("running_covariance's sample covariance is unbiased", "[stats]") {
-    // E[s^2] = sigma^2, Var[s^2] = 2 sigma^4 / (n - 1) for Gaussian samples
-    const std::size_t n = 10, streams = 20000;
+    // E[s^2] = sigma^2, Var[s^2] = 2 sigma^4 / (n - 1) for Gaussian samples. Small n, where the correction
+    // n / (n - 1) is far from a wrong one such as (n + 1) / n: with the population mean E[v] = sigma^2 (n - 1) / n,
+    // (n + 1) / n would give E = sigma^2 (n^2 - 1) / n^2, i.e. 0.75 sigma^2 at n = 2 and 0.889 sigma^2 at n = 3,
+    // while the 5-sigma window below is 5 sqrt(2 / ((n - 1) M)) sigma^2 = 0.050 and 0.035 sigma^2 at M = 20000.
+    const std::size_t n = GENERATE(std::size_t{2}, std::size_t{3}, std::size_t{10});
+    const std::size_t streams = 20000;
     const double sigma2 = 2.5;
-    std::mt19937_64 rng(99);
+    std::mt19937_64 rng(99 + n);
     std::normal_distribution<double> normal(-7.0, std::sqrt(sigma2));
     double mean_sample = 0, mean_population = 0;
     for (std::size_t s = 0; s < streams; ++s) {
@@ -122,13 +126,17 @@ TEST_CASE("running_covariance's sample covariance is unbiased", "[stats]") {
         mean_sample += r.sample_variance(0);
         mean_population += r.variance(0);
     }
-    const double m = static_cast<double>(streams);
+    const double m = static_cast<double>(streams), nd = static_cast<double>(n);
     mean_sample /= m;
     mean_population /= m;
-    const double sd = std::sqrt(2 * sigma2 * sigma2 / static_cast<double>(n - 1) / m);
+    const double sd = std::sqrt(2 * sigma2 * sigma2 / (nd - 1) / m);
+    INFO("n " << n << ": mean sample variance " << mean_sample << ", sigma^2 " << sigma2 << ", sd " << sd);
     CHECK(std::fabs(mean_sample - sigma2) <= 5 * sd);
-    // the population covariance carries the (n - 1) / n bias
-    CHECK(std::fabs(mean_population - sigma2 * static_cast<double>(n - 1) / static_cast<double>(n)) <= 5 * sd);
+    // the population covariance carries the (n - 1) / n bias; Var[v] = Var[s^2] ((n - 1) / n)^2 <= Var[s^2]
+    CHECK(std::fabs(mean_population - sigma2 * (nd - 1) / nd) <= 5 * sd);
+    // where n is small the test tells the right correction from (n + 1) / n: the two expectations lie more
+    // than 10 sd apart (25 sd at n = 2, 16 sd at n = 3)
+    if (n <= 3) CHECK(sigma2 - sigma2 * (nd * nd - 1) / (nd * nd) > 10 * sd);
 }
 
 TEST_CASE("frame means of n samples have 1/n of the per-sample covariance (Eq. 27)", "[stats]") {

@@ -37,7 +37,36 @@ void check_cells_near_paper(const scenario_summary& s, const std::array<double, 
     }
 }
 
+// Our own 500-seed means (seeds 1..500, default settings), from
+//     build/bin/emcv-toy --seeds 500 --json
+// (the "mean" of each cell), rounded to 5 significant digits. The paper comparison above has a window of
+// 4 per-seed sd, wide enough to hold a neighbouring policy's value (static Res_EMCM's holds Res_SF, dynamic
+// ResHat's holds Res_EMCM and Res_GT). Here each mean is pinned to 4 standard errors, 4 sd / sqrt(N): a change in
+// what a policy computes (a mixed-up policy, a different coefficient, a different seed stream) moves its mean by
+// more than that, while a change in the last bits of libm cannot (docs/toy.md, "Test tolerances").
+constexpr std::array<double, residual_count> ours_static_500 = {0.032104, 0.015644, 0.0058955,
+                                                                0.0083573, 0.033220, 0.0056862};
+constexpr std::array<double, residual_count> ours_dynamic_500 = {0.57603, 0.37650, 0.37450, 0.14325, 0.084180, 0.13443};
+
+void check_cells_pinned(const scenario_summary& s, const std::array<double, residual_count>& ours) {
+    const double n = static_cast<double>(seed_count);
+    for (std::size_t k = 0; k < residual_count; ++k) {
+        const double tolerance = 4.0 * s.cells[k].sd / std::sqrt(n);
+        INFO("cell " << residual_keys[k] << ": mean " << s.cells[k].mean << " pinned " << ours[k] << " tolerance "
+                     << tolerance);
+        CHECK(std::fabs(s.cells[k].mean - ours[k]) <= tolerance);
+    }
+}
+
 }  // namespace
+
+TEST_CASE("static Table 1 cells stay at our own 500-seed means (4 standard errors)", "[toy]") {
+    check_cells_pinned(static_summary(), ours_static_500);
+}
+
+TEST_CASE("dynamic Table 1 cells stay at our own 500-seed means (4 standard errors)", "[toy]") {
+    check_cells_pinned(dynamic_summary(), ours_dynamic_500);
+}
 
 TEST_CASE("static Table 1 cells lie within the seed spread of the paper's run", "[toy]") {
     check_cells_near_paper(static_summary(), paper_static);
@@ -139,10 +168,4 @@ TEST_CASE("each residual applies the coefficient of the previous frames", "[toy]
         CHECK(std::fabs(r.residual[res_emcm_hat] - (r.fbar - r.alpha[res_emcm_hat] * r.g_expected)) <= 1e-12);
         CHECK(std::fabs(r.residual[res_sf] - (r.fbar - r.alpha[res_sf] * r.gbar)) <= 1e-12);
     }
-}
-
-TEST_CASE("the same seed reproduces the same run", "[toy]") {
-    const run_result a = simulate_run(scenario::dynamic_light, toy_config{}, 42, false);
-    const run_result b = simulate_run(scenario::dynamic_light, toy_config{}, 42, false);
-    CHECK(a.mean_remse == b.mean_remse);
 }

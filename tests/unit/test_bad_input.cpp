@@ -23,19 +23,94 @@ TEMPLATE_TEST_CASE("eta outside the interval 0 < eta <= 1 is refused", "[bad-inp
     REQUIRE_NOTHROW(emcv::emcm<T, 1>(std::numeric_limits<T>::min()));
 }
 
-TEMPLATE_TEST_CASE("negative or non-finite weights and decays outside 0..1 are refused", "[bad-input]", float,
-                   double, long double) {
+TEMPLATE_TEST_CASE("negative weights and decays outside 0..1 are refused", "[bad-input]", float, double,
+                   long double) {
     using T = TestType;
     emcv::weighted_covariance<T, 2> e;
     const std::array<T, 2> x{T(1), T(2)};
-    REQUIRE_THROWS_WITH(e.push(x, T(-1)), ContainsSubstring("weight must be finite and >= 0"));
-    REQUIRE_THROWS_WITH(e.push(x, std::numeric_limits<T>::quiet_NaN()), ContainsSubstring("weight"));
-    REQUIRE_THROWS_WITH(e.push(x, std::numeric_limits<T>::infinity()), ContainsSubstring("weight"));
+    REQUIRE_THROWS_WITH(e.push(x, T(-1)), ContainsSubstring("weight must be >= 0"));
+    REQUIRE_THROWS_WITH(e.push(x, -std::numeric_limits<T>::infinity()), ContainsSubstring("weight must be >= 0"));
+    REQUIRE_THROWS_WITH(e.push(x, -std::numeric_limits<T>::denorm_min()), ContainsSubstring("weight"));
     REQUIRE_THROWS_WITH(e.push(x, T(1), T(-0.5)), ContainsSubstring("decay must lie in [0, 1]"));
     REQUIRE_THROWS_WITH(e.push(x, T(1), T(1.5)), ContainsSubstring("decay must lie in [0, 1]"));
     REQUIRE_THROWS_WITH(e.push(x, T(1), std::numeric_limits<T>::quiet_NaN()), ContainsSubstring("decay"));
     REQUIRE(e.count() == 0);  // a refused call changes nothing
     REQUIRE(e.rejected() == 0);
+}
+
+TEMPLATE_TEST_CASE("a NaN or +Inf weight is rejected and counted like a non-finite sample", "[bad-input]", float,
+                   double, long double) {
+    // An importance weight f / pdf becomes Inf or NaN where the pdf reaches 0: the sample is refused, not the call.
+    using T = TestType;
+    emcv::weighted_covariance<T, 2> e;
+    REQUIRE(e.push({T(1), T(2)}, T(2)));
+    REQUIRE(e.push({T(3), T(-2)}, T(0.5), T(0.75)));
+    const auto before = e.state();
+    REQUIRE_FALSE(e.push({T(5), T(5)}, std::numeric_limits<T>::quiet_NaN()));
+    REQUIRE_FALSE(e.push({T(5), T(5)}, std::numeric_limits<T>::infinity(), T(0.5)));
+    REQUIRE(e.rejected() == 2);
+    REQUIRE(e.count() == before.count);
+    REQUIRE(e.total_weight() == before.total_weight);
+    REQUIRE(e.state().mean == before.mean);
+    REQUIRE(e.state().covariance == before.covariance);
+}
+
+TEMPLATE_TEST_CASE("push(x, 0, 0) empties the estimator and the next weighted push seeds it", "[bad-input]", float,
+                   double) {
+    using T = TestType;
+    emcv::weighted_covariance<T, 1> e;
+    REQUIRE(e.push(T(1)));
+    REQUIRE(e.push(T(3)));
+    REQUIRE(e.variance(0) == T(1));
+    REQUIRE(e.push(T(7), T(0), T(0)));  // forget everything, give x no weight: W = 0 holds nothing
+    REQUIRE(e.count() == 3);            // the call is counted (it was a finite sample)
+    REQUIRE(e.total_weight() == T(0));
+    REQUIRE(e.mean(0) == T(0));
+    REQUIRE(e.variance(0) == T(0));
+    REQUIRE(emcv::weighted_covariance<T, 1>::valid_state(e.state()));
+    REQUIRE(e.push(T(5), T(2), T(1)));  // r = 2 / 2 = 1: x seeds the mean, covariance 0
+    REQUIRE(e.mean(0) == T(5));
+    REQUIRE(e.variance(0) == T(0));
+    REQUIRE(e.push(T(9), T(2), T(1)));  // equal weights: mean 7, population variance 4
+    REQUIRE(e.mean(0) == T(7));
+    REQUIRE(e.variance(0) == T(4));
+}
+
+TEMPLATE_TEST_CASE("a restored state with count 0 must be empty", "[bad-input]", float, double) {
+    // A texture that stores only mean and covariance must be restored with count >= 1: with count == 0 the next
+    // push would seed the mean and silently drop what was stored, so such a state is refused.
+    using T = TestType;
+    using state = typename emcv::emcm<T, 2>::state_type;
+    state s{};
+    REQUIRE_NOTHROW((emcv::emcm<T, 2>(T(0.05), s)));  // the empty state
+    s.rejected = 4;                                     // rejections alone keep it empty
+    REQUIRE_NOTHROW((emcv::emcm<T, 2>(T(0.05), s)));
+    auto with_mean = s;
+    with_mean.mean = {T(0.5), T(1)};
+    REQUIRE_THROWS_WITH((emcv::emcm<T, 2>(T(0.05), with_mean)), ContainsSubstring("all zero when count == 0"));
+    auto with_cov = s;
+    with_cov.covariance[2] = T(0.25);
+    REQUIRE_THROWS_AS((emcv::moving_stats<T>(T(0.2), typename emcv::moving_stats<T>::state_type{0, 0, T(0), {T(0)},
+                                                                                                  {T(0.25)}})),
+                      std::invalid_argument);
+    REQUIRE_THROWS_AS((emcv::emcm<T, 2>(T(0.05), with_cov)), std::invalid_argument);
+    auto with_weight = s;
+    with_weight.total_weight = T(1);
+    REQUIRE_THROWS_AS((emcv::weighted_covariance<T, 2>(with_weight)), std::invalid_argument);
+    auto with_low = s;
+    with_low.mean_compensation[1] = T(1e-9);
+    REQUIRE_THROWS_AS((emcv::compensated_emcm<T, 2>(T(0.05), with_low)), std::invalid_argument);
+    with_low = s;
+    with_low.covariance_compensation[0] = T(1e-9);
+    REQUIRE_THROWS_AS((emcv::compensated_emcm<T, 2>(T(0.05), with_low)), std::invalid_argument);
+    // the same mean and covariance with count 1 is a defined history: the next push continues from it
+    with_mean.count = 1;
+    with_mean.total_weight = T(1);
+    with_mean.covariance = {T(0.25), T(0), T(0.25)};
+    emcv::emcm<T, 2> restored(T(0.5), with_mean);
+    restored.push({T(1.5), T(1)});  // d = (1, 0): mean 1, Cov_00 = 0.5 (0.25 + 0.5 * 1) = 0.375
+    REQUIRE(restored.mean(0) == T(1));
+    REQUIRE(restored.variance(0) == T(0.375));
 }
 
 TEMPLATE_TEST_CASE("NaN and Inf samples are rejected and counted and leave the state untouched", "[bad-input]",
@@ -94,4 +169,20 @@ TEST_CASE("a non-finite first sample does not seed the estimator", "[bad-input]"
     REQUIRE(e.push(2.0));  // the first finite sample seeds
     REQUIRE(e.mean(0) == 2.0);
     REQUIRE(e.variance(0) == 0.0);
+}
+
+TEMPLATE_TEST_CASE("a zero-weight sample far from the mean changes nothing and stores no NaN", "[bad-input]", float,
+                   double) {
+    // d^2 overflows for d = 2 sqrt(max): with r = 0 the product 0 * Inf would be NaN.
+    using T = TestType;
+    const T far = std::sqrt(std::numeric_limits<T>::max()) * T(2);
+    emcv::weighted_covariance<T, 2> e;
+    REQUIRE(e.push({T(1), T(2)}));
+    REQUIRE(e.push({T(3), T(4)}));
+    const auto before = e.state();
+    REQUIRE(e.push({-far, far}, T(0), T(0.5)));  // decays the weight, adds nothing
+    REQUIRE(e.total_weight() == T(1));
+    REQUIRE(e.state().mean == before.mean);
+    REQUIRE(e.state().covariance == before.covariance);
+    REQUIRE(emcv::weighted_covariance<T, 2>::valid_state(e.state()));
 }

@@ -10,6 +10,9 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <vector>
+
+#include "../support/reference.hpp"
 
 TEST_CASE("cv_coefficient is Cov/Var with a guard that falls back to no control variate", "[cv]") {
     REQUIRE(emcv::cv_coefficient(0.5, 2.0) == 0.25);
@@ -42,28 +45,38 @@ TEST_CASE("residual policies apply the coefficient of the previous frame", "[cv]
 
     emcv::control_variate<double> sf(residual_policy::single_frame);
     REQUIRE(sf.push(f1) == 2.0);  // alpha_0 = 0
-    REQUIRE(sf.alpha() == emcv::cv_coefficient(0.3, 0.1));
-    REQUIRE(sf.push(f2) == 3.0 - emcv::cv_coefficient(0.3, 0.1) * 2.0);
+    REQUIRE(sf.alpha() == 0.3 / 0.1);
+    REQUIRE(sf.push(f2) == 3.0 - (0.3 / 0.1) * 2.0);
     REQUIRE(sf.alpha() == 0.5);
 
     emcv::control_variate<double> ema(residual_policy::single_frame_ema, 0.05, 0.25);
     ema.push(f1);
-    REQUIRE(ema.alpha() == emcv::cv_coefficient(0.3, 0.1));  // the first alpha seeds the EMA
+    REQUIRE(ema.alpha() == 0.3 / 0.1);  // the first alpha seeds the EMA
     ema.push(f2);
     REQUIRE(std::fabs(ema.alpha() - (0.75 * 3.0 + 0.25 * 0.5)) < 1e-15);
 
+    // The emcm_* coefficient against the two-pass weighted covariance of the (f, g) frame means under the
+    // geometric weights of Eq. 18 (long double, independent of the recurrence): alpha = C_fg / C_gg, 0 while
+    // C_gg = 0 (one frame seen).
     emcv::control_variate<double> sampled(residual_policy::emcm_sampled, 0.5);
     emcv::control_variate<double> constant(residual_policy::emcm_constant, 0.5);
-    emcv::emcm<double, 2> reference(0.5);
-    for (const auto& fr : {f1, f2, f1, f2}) {
-        const double alpha = emcv::cv_coefficient(reference.covariance(0, 1), reference.variance(1));
-        REQUIRE(sampled.residual(fr) == fr.f - alpha * fr.g);
-        REQUIRE(constant.residual(fr) == fr.f - alpha * fr.g_expected);
+    const emcv::cv_frame<double> f3{2.5, 3.0, 1.0, 0.1, 0.2};  // off the line through f1 and f2
+    const std::vector<emcv::cv_frame<double>> frames{f1, f2, f3, f1, f2, f3};
+    std::vector<std::array<double, 2>> seen;
+    double alpha_expected = 0;
+    for (const auto& fr : frames) {
+        INFO("frame " << seen.size());
+        REQUIRE(std::fabs(sampled.residual(fr) - (fr.f - alpha_expected * fr.g)) <= 1e-12);
+        REQUIRE(std::fabs(constant.residual(fr) - (fr.f - alpha_expected * fr.g_expected)) <= 1e-12);
         sampled.update(fr);
         constant.update(fr);
-        reference.push({fr.f, fr.g});
+        seen.push_back({fr.f, fr.g});
+        const auto ref = emcv_test::two_pass<2>(seen, emcv_test::geometric_weights(0.5, seen.size()), seen.size());
+        alpha_expected = ref.covariance[1][1] > 0 ? static_cast<double>(ref.covariance[0][1] / ref.covariance[1][1]) : 0.0;
+        REQUIRE(std::fabs(sampled.alpha() - alpha_expected) <= 1e-12 * (1 + std::fabs(alpha_expected)));
         REQUIRE(sampled.alpha() == constant.alpha());  // same EMCM, same alpha (Table 1's ResHat_EMCM)
     }
+    REQUIRE(std::fabs(alpha_expected) > 0.05);  // a real coefficient (2/21 here), not the guard's 0
     REQUIRE(sampled.alpha() != 0.0);
     sampled.reset();
     REQUIRE(sampled.alpha() == 0.0);
@@ -120,6 +133,20 @@ TEST_CASE("sample_count_true_distribution follows Unreal's formula", "[samples]"
     REQUIRE(emcv::sample_count_true_distribution(0.0, 1e-4, 0.2, 1e-4, 0, 64) == 0);
 }
 
+TEST_CASE("sample_count_true_distribution subtracts n_est: exactly representable cases", "[samples]") {
+    // Every operand and intermediate below is a small dyadic rational, so the arithmetic is exact in float and
+    // double and the ceiling cannot hide a missing term: with and without "- n_est" the counts differ.
+    //   g = 0.5, eta = 0.5: n_est = 0.5 (2/0.5 - 1) = 1.5;  var 2, target 0.5: 2 * 1.5 / 0.5 - 1.5 = 4.5 -> 5 (not 6)
+    REQUIRE(emcv::sample_count_true_distribution(2.0, 0.5, 0.5, 0.5, 0, 64) == 5);
+    REQUIRE(emcv::sample_count_true_distribution(2.0f, 0.5f, 0.5f, 0.5f, 0, 64) == 5);
+    //   g = 1, eta = 1: n_est = 1;  var 4, target 1: 4 - 1 = 3 exactly -> 3 (not 4)
+    REQUIRE(emcv::sample_count_true_distribution(4.0, 1.0, 1.0, 1.0, 0, 64) == 3);
+    //   g = 2, eta = 0.25: n_est = 2 * 7 = 14;  var 0.75, target 0.5: 0.75 * 14 / 0.5 - 14 = 7 -> 7 (not 21)
+    REQUIRE(emcv::sample_count_true_distribution(0.75, 2.0, 0.25, 0.5, 0, 64) == 7);
+    //   g = 2, eta = 1: n_est = 2;  var 0.5, target 1: 0.5 * 2 - 2 = -1, clamped to n_min = 0 (not 1)
+    REQUIRE(emcv::sample_count_true_distribution(0.5, 2.0, 1.0, 1.0, 0, 64) == 0);
+}
+
 TEST_CASE("sample_count rejects a meaningless budget", "[samples]") {
     using Catch::Matchers::ContainsSubstring;
     REQUIRE_THROWS_WITH(emcv::sample_count(1.0, 0.0, 8, 64), ContainsSubstring("target variance"));
@@ -128,4 +155,19 @@ TEST_CASE("sample_count rejects a meaningless budget", "[samples]") {
     REQUIRE_THROWS_WITH(emcv::sample_count(1.0, 1e-4, 65, 64), ContainsSubstring("n_min must not exceed n_max"));
     REQUIRE_THROWS_WITH(emcv::sample_count_true_distribution(1.0, 1.0, 0.0, 1e-4, 8, 64),
                         ContainsSubstring("eta must lie in (0, 1]"));
+}
+
+TEST_CASE("a broken history samples fully; a NaN floor turns the control variate off", "[samples][cv]") {
+    const double nan = std::nan(""), inf = std::numeric_limits<double>::infinity();
+    // sample_count_true_distribution: a NaN (or Inf) per-sample history makes n_est and the count NaN -> n_max,
+    // as a NaN variance does in sample_count (more samples, never fewer, when the history is broken)
+    REQUIRE(emcv::sample_count_true_distribution(2.0, nan, 0.5, 0.5, 1, 48) == 48);
+    REQUIRE(emcv::sample_count_true_distribution(0.0, nan, 0.5, 0.5, 1, 48) == 48);
+    REQUIRE(emcv::sample_count_true_distribution(2.0, inf, 0.5, 0.5, 1, 48) == 48);
+    REQUIRE(emcv::sample_count_true_distribution(0.0, inf, 0.5, 0.5, 1, 48) == 48);  // 0 * Inf is NaN
+    REQUIRE(emcv::sample_count_true_distribution(nan, 0.5, 0.5, 0.5, 1, 48) == 48);
+    // cv_coefficient: no variance is "above" a NaN floor, so alpha = 0 (the residual is f itself)
+    REQUIRE(emcv::cv_coefficient(0.5, 2.0, nan) == 0.0);
+    REQUIRE(emcv::cv_coefficient(0.5f, 2.0f, std::nanf("")) == 0.0f);
+    REQUIRE(emcv::cv_coefficient(0.5, 2.0, 1.0) == 0.25);  // while a finite floor below var_g lets it through
 }

@@ -55,23 +55,26 @@ TEST_CASE("emcm equals the weighted covariance under geometric weights (Eq. 18 2
     }
 }
 
-TEST_CASE("emcm is weighted_covariance pushed with weight eta and decay 1 - eta", "[emcm]") {
+TEST_CASE("weighted_covariance pushed with weight eta and decay 1 - eta is the geometric-weight covariance", "[emcm]") {
+    // The push(x, w, decay) route to Eq. 21's weights, checked against the two-pass long-double weighted
+    // covariance with the weights of Eq. 18 (not against emcm, which shares its recurrence).
     const double eta = 0.05;
     const auto xs = stream(5, 500);
-    emcv::emcm<double, 2> e(eta);
     emcv::weighted_covariance<double, 2> w;
     for (std::size_t n = 0; n < xs.size(); ++n) {
-        e.push(xs[n]);
         if (n == 0)
             w.push(xs[n], 1.0, 1.0);  // the seed
         else
             w.push(xs[n], eta, 1.0 - eta);
     }
+    const auto ref = emcv_test::two_pass<2>(xs, emcv_test::geometric_weights(eta, xs.size()), xs.size());
+    REQUIRE(std::fabs(w.total_weight() - 1.0) <= 1e-13);
     for (std::size_t a = 0; a < 2; ++a) {
-        REQUIRE(std::fabs(e.mean(a) - w.mean(a)) <= kTolerance * (std::fabs(w.mean(a)) + 1));
+        const real sd = std::sqrt(ref.covariance[a][a]);
+        REQUIRE(emcv_test::scaled_error(w.mean(a), ref.mean[a], std::fabs(ref.mean[a]) + sd) <= kTolerance);
         for (std::size_t b = 0; b < 2; ++b)
-            REQUIRE(std::fabs(e.covariance(a, b) - w.covariance(a, b)) <=
-                    kTolerance * std::sqrt(w.variance(a) * w.variance(b)));
+            REQUIRE(emcv_test::scaled_error(w.covariance(a, b), ref.covariance[a][b],
+                                            std::sqrt(ref.covariance[a][a] * ref.covariance[b][b])) <= kTolerance);
     }
 }
 
@@ -141,21 +144,24 @@ TEST_CASE("EWMA with eta = 1 keeps only the last squared step and EMCM with eta 
     REQUIRE(e.mean(0) == 2.0);
 }
 
-TEST_CASE("moving_stats is the scalar emcm (SPVG's history update)", "[moving_stats]") {
-    emcv::moving_stats<double> m(0.2);
-    emcv::emcm<double, 1> e(0.2);
+TEST_CASE("moving_stats follows SPVG's history update (UE UpdateQualityVariance form)", "[moving_stats]") {
+    // The UE form, run independently in long double: mu' = (1 - a) mu + a x, var' = (1 - a) var + a (1 - a) (x - mu)^2,
+    // seeded with mu = x_0, var = 0. Relative agreement to 1e-12 at every step.
+    const double a = 0.2;
+    emcv::moving_stats<double> m(a);
     const auto xs = stream(8, 100);
-    for (const auto& x : xs) {
-        m.push(x[0]);
-        e.push(x[0]);
-        REQUIRE(m.mean() == e.mean(0));
-        REQUIRE(m.variance() == e.variance(0));
+    real mu = xs[0][0], var = 0;
+    m.push(xs[0][0]);
+    for (std::size_t n = 1; n < xs.size(); ++n) {
+        const real x = xs[n][0];
+        var = (1 - a) * var + a * (1 - a) * (x - mu) * (x - mu);
+        mu = (1 - a) * mu + a * x;
+        m.push(xs[n][0]);
+        INFO("step " << n);
+        REQUIRE(std::fabs(m.mean() - mu) <= 1e-12 * (std::fabs(mu) + 1));
+        REQUIRE(std::fabs(m.variance() - var) <= 1e-12 * (var + 1e-300));
     }
-    // the UE form: mu' = (1 - a) mu + a x, var' = (1 - a) var + a (1 - a) (x - mu)^2
-    const double mu = m.mean(), var = m.variance(), x = 3.25;
-    m.push(x);
-    REQUIRE(std::fabs(m.mean() - (0.8 * mu + 0.2 * x)) <= 1e-14 * (std::fabs(mu) + 1));
-    REQUIRE(std::fabs(m.variance() - (0.8 * var + 0.2 * 0.8 * (x - mu) * (x - mu))) <= 1e-14 * (var + 1));
+    REQUIRE(m.count() == xs.size());
     m.reset();
     REQUIRE(m.count() == 0);
     REQUIRE(m.variance() == 0.0);

@@ -48,6 +48,14 @@ bool all_finite(const std::array<T, N>& x) noexcept {
     return true;
 }
 
+/// True when every component is exactly zero (+0 or -0).
+template <class T, std::size_t N>
+bool all_zero(const std::array<T, N>& x) noexcept {
+    for (std::size_t i = 0; i < N; ++i)
+        if (!(x[i] == T(0))) return false;
+    return true;
+}
+
 /// A vector-like type of N components: glm::vec<N, T> and anything else with a static length() == N
 /// and operator[]. Detected structurally so that the library never includes GLM itself.
 template <class V, std::size_t N, class = void>

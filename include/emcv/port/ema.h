@@ -11,6 +11,9 @@
 //            the comoments saturate at +-FLT_MAX, as there)
 //            with r = 1 for the first accepted sample (it seeds mu, Cov = 0) and r = eta afterwards.
 //            Non-finite samples are refused: state unchanged, `rejected` + 1, the push returns false.
+//            A stored state the update cannot have produced (read back from a texture: a NaN or Inf mean or
+//            covariance, a negative variance) is reseeded by the next finite sample as a first sample and
+//            counted in `reseeded`, as emcv::moving_stats_update does for its per-pixel arrays.
 // USAGE C++  emcv::port::EmcvEmcm2 s = emcv::port::emcv_emcm2_init(); emcv_emcm2_push(s, glm::vec2(f, g), 0.05f);
 // USAGE GLSL EmcvEmcm2 s = emcv_emcm2_init(); emcv_emcm2_push(s, vec2(f, g), 0.05f);
 // REFERENCES Xie & Olano 2021, supp. Eq. 17, 21, 24; SPVG 2020 (moving mean/variance, eta = 0.2).
@@ -27,6 +30,7 @@ struct EmcvEmcm2 {
     vec3 cov;       ///< (C_ff, C_fG, C_GG)
     uint count;     ///< accepted samples
     uint rejected;  ///< refused non-finite samples
+    uint reseeded;  ///< invalid stored states replaced by a first sample
 };
 
 /// Moving mean and variance of one scalar (emcv::moving_stats).
@@ -35,6 +39,7 @@ struct EmcvMovingStats {
     float variance; ///< var
     uint count;     ///< accepted samples
     uint rejected;  ///< refused non-finite samples
+    uint reseeded;  ///< invalid stored states replaced by a first sample
 };
 
 /// An empty EMCM state (the first accepted sample seeds the mean).
@@ -44,7 +49,14 @@ EMCV_FN EmcvEmcm2 emcv_emcm2_init() {
     s.cov = vec3(0.0f);
     s.count = 0u;
     s.rejected = 0u;
+    s.reseeded = 0u;
     return s;
+}
+
+/// True when the stored state is one the update can have produced: finite, both variances >= 0 (NaN fails).
+EMCV_FN bool emcv_emcm2_valid(EMCV_IN(EmcvEmcm2) s) {
+    return emcv_is_finite(s.mean.x) && emcv_is_finite(s.mean.y) && emcv_is_finite(s.cov.y) && s.cov.x >= 0.0f &&
+           s.cov.x <= emcv_float_max() && s.cov.z >= 0.0f && s.cov.z <= emcv_float_max();
 }
 
 /// One coordinate of the mean update, as detail::comoment_step (plain accuracy) in weighted_covariance.hpp:
@@ -72,6 +84,12 @@ EMCV_FN bool emcv_emcm2_push(EMCV_INOUT(EmcvEmcm2) s, EMCV_IN(vec2) x, float eta
         s.rejected = s.rejected + 1u;
         return false;
     }
+    if (s.count != 0u && !emcv_emcm2_valid(s)) {  // an invalid stored state: x becomes its first sample
+        s.mean = x;
+        s.cov = vec3(0.0f);
+        s.count = 0u;
+        s.reseeded = s.reseeded + 1u;
+    }
     float r = s.count == 0u ? 1.0f : eta;  // the first sample seeds the mean, Cov = 0
     float outer = 1.0f - r;
     float m0 = s.mean.x;
@@ -92,7 +110,13 @@ EMCV_FN EmcvMovingStats emcv_moving_stats_init() {
     s.variance = 0.0f;
     s.count = 0u;
     s.rejected = 0u;
+    s.reseeded = 0u;
     return s;
+}
+
+/// True when the stored state is one the update can have produced: finite, variance >= 0 (NaN fails).
+EMCV_FN bool emcv_moving_stats_valid(EMCV_IN(EmcvMovingStats) s) {
+    return emcv_is_finite(s.mean) && s.variance >= 0.0f && s.variance <= emcv_float_max();
 }
 
 /// mu' = mu + r (x - mu), var' = var + r (((1 - r) d) d - var); r = 1 on the first sample, eta afterwards
@@ -101,6 +125,12 @@ EMCV_FN bool emcv_moving_stats_push(EMCV_INOUT(EmcvMovingStats) s, float x, floa
     if (!emcv_is_finite(x)) {
         s.rejected = s.rejected + 1u;
         return false;
+    }
+    if (s.count != 0u && !emcv_moving_stats_valid(s)) {  // an invalid stored state: x becomes its first sample
+        s.mean = x;
+        s.variance = 0.0f;
+        s.count = 0u;
+        s.reseeded = s.reseeded + 1u;
     }
     float r = s.count == 0u ? 1.0f : eta;
     float outer = 1.0f - r;
