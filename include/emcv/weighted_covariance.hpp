@@ -108,8 +108,10 @@ constexpr std::pair<std::size_t, std::size_t> packed_row_column(std::size_t k, s
 enum class range_check { select, branch };
 
 #if defined(__GNUC__) || defined(__clang__)
+/// Branch hint: the condition x is expected to be false (the out-of-range case of range_check::branch).
 #define EMCV_UNLIKELY(x) __builtin_expect(!!(x), 0)
 #else
+/// Branch hint: the condition x is expected to be false (no hint on this compiler).
 #define EMCV_UNLIKELY(x) (x)
 #endif
 
