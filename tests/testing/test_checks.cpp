@@ -133,3 +133,17 @@ TEST_CASE("convergence: a Monte Carlo mean falls like n^-1/2; a biased one and a
     CHECK(fast.statistic > 1.3);
     CHECK_THROWS_AS(et::convergence_test(stratified, {16}), std::invalid_argument);
 }
+
+TEST_CASE("chi-square pools the cells expected to get fewer than min_expected samples") {
+    // 20 cells expecting 0.25 each (5 in all) with all 5 samples in one of them, beside 3 exact large cells:
+    // cell by cell that is chi2 = (5 - 0.25)^2 / 0.25 + 19 * 0.25 = 95 on 22 dof (p ~ 1e-10); pooled it is
+    // one cell of 5 expected and 5 observed, chi2 = 0
+    std::vector<double> observed(20, 0.0), expected(20, 0.25);
+    observed[7] = 5;
+    for (int i = 0; i < 3; ++i) observed.push_back(100), expected.push_back(100);
+    const auto r = et::chi2_test(observed, expected);
+    INFO(r.message);
+    CHECK(r.passed);
+    CHECK(r.statistic == 0.0);
+    CHECK(r.message.find("(20 pooled into one), 3 dof") != std::string::npos);
+}

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -38,8 +39,9 @@ inline test_result make_result(const std::string& what, const std::string& detai
     r.p_value = p_value;
     r.alpha = alpha;
     r.passed = std::isfinite(statistic) && p_value >= alpha;
-    r.message = what + ": " + details + ", p = " + std::to_string(p_value) + ", alpha = " + std::to_string(alpha) +
-                (r.passed ? ": passed" : ": REJECTED");
+    std::ostringstream m;
+    m << what << ": " << details << ", p = " << p_value << ", alpha = " << alpha << (r.passed ? ": passed" : ": REJECTED");
+    r.message = m.str();
     return r;
 }
 
