@@ -237,7 +237,11 @@ public:
             return true;
         }
         s_.total_weight = w_total;
-        step(x, weight / w_total, comoment_form::current_mean);
+        // r = 0 (a zero weight, or one that underflows against W) leaves mean and covariance as they are;
+        // skipped rather than stepped, because 0 * (an outer product that overflowed to Inf) is NaN
+        // (found by tests/fuzz, docs/numerics.md "Fuzzing").
+        const T r = weight / w_total;
+        if (r > T(0)) step(x, r, comoment_form::current_mean);
         return true;
     }
 

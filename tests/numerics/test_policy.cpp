@@ -141,6 +141,24 @@ TEMPLATE_TEST_CASE("a first sample whose square overflows seeds a zero covarianc
     CHECK(r.mean(0) == T(0));
 }
 
+TEMPLATE_TEST_CASE("a zero weight after a saturated covariance changes nothing (fuzz finding)", "", float, double) {
+    // tests/fuzz found it: weights 1 for 0, 0, -max (covariance saturates at max), then a sample of weight 0
+    // at 0.125. r = 0 / W = 0 met an outer product d^2 that overflowed to Inf: 0 * Inf = NaN was stored.
+    const TestType big = std::numeric_limits<TestType>::max();
+    emcv::weighted_covariance<TestType, 2> e;
+    e.push({TestType(0), TestType(0)});
+    e.push({TestType(0), TestType(0)});
+    e.push({-big, big});
+    const auto before = e.state();
+    CHECK(e.push({TestType(0.125), TestType(-0.125)}, TestType(0), TestType(1)));
+    CHECK(e.count() == before.count + 1);
+    for (std::size_t k = 0; k < 3; ++k) CHECK(std::isfinite(e.state().covariance[k]));
+    CHECK(same_bits(e.state(), [&] { auto s = before; s.count += 1; return s; }()));
+    // a weight that underflows against W (r rounds to 0) is the same case
+    CHECK(e.push({TestType(0.5), TestType(0.5)}, std::numeric_limits<TestType>::denorm_min(), TestType(1)));
+    for (std::size_t k = 0; k < 3; ++k) CHECK(std::isfinite(e.state().covariance[k]));
+}
+
 TEMPLATE_TEST_CASE("opposite signs near the top of the range: the mean stays finite and inside the data", "",
                    float, double) {
     using T = TestType;
