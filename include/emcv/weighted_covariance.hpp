@@ -226,7 +226,10 @@ public:
             ++s_.rejected;
             return false;
         }
-        const T w_total = decay * s_.total_weight + weight;
+        // two weights near max overflow their sum: W saturates at max like the covariance (numerics.md 4.3),
+        // never Inf (found by tests/fuzz); r = w / W then stays in [0, 1]
+        const T w_sum = decay * s_.total_weight + weight;
+        const T w_total = std::isgreater(w_sum, std::numeric_limits<T>::max()) ? std::numeric_limits<T>::max() : w_sum;
         ++s_.count;
         if (!(w_total > T(0))) {  // every weight is zero: the estimator holds nothing
             s_.total_weight = T(0);

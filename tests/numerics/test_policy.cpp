@@ -159,6 +159,19 @@ TEMPLATE_TEST_CASE("a zero weight after a saturated covariance changes nothing (
     for (std::size_t k = 0; k < 3; ++k) CHECK(std::isfinite(e.state().covariance[k]));
 }
 
+TEMPLATE_TEST_CASE("weights near max saturate the total weight instead of overflowing it (fuzz finding)", "", float,
+                   double) {
+    const TestType big = std::numeric_limits<TestType>::max();
+    emcv::weighted_covariance<TestType, 1> e;
+    CHECK(e.push(TestType(1), big));
+    CHECK(e.push(TestType(3), big));  // W = 2 max would be Inf
+    CHECK(e.total_weight() == big);
+    // r = max / max = 1: the newest sample takes over, everything finite
+    CHECK(e.mean(0) == TestType(3));
+    CHECK(std::isfinite(e.variance(0)));
+    CHECK(emcv::weighted_covariance<TestType, 1>::valid_state(e.state()));
+}
+
 TEMPLATE_TEST_CASE("opposite signs near the top of the range: the mean stays finite and inside the data", "",
                    float, double) {
     using T = TestType;
