@@ -117,10 +117,17 @@ EMCV_ALWAYS_INLINE void comoment_step(T* mean, T* mean_low, T* covariance, T* co
             T sum, error;
             two_sum(mu, w.r * di, sum, error);  // sum + error == mu + r d exactly
             const T low_new = mean_low[i] + error;
-            mu = sum + low_new;  // renormalise (fast two-sum): |low| <= ulp(mu) / 2
-            mean_low[i] = low_new - (mu - sum);
+            const T renormalised = sum + low_new;  // renormalise (fast two-sum): |low| <= ulp(mu) / 2
+            const T low_renormalised = low_new - (renormalised - sum);
+            // mu + r d rounded past max (r near 1, x near max): saturate, drop the (NaN) low part
+            const bool above = std::isgreater(sum, largest), below = std::isless(sum, -largest);
+            mu = above ? largest : (below ? -largest : renormalised);
+            mean_low[i] = above || below ? T(0) : low_renormalised;
         } else {
             mu += w.r * di;
+            // with r near 1 and x near max, mu + r d can round past max although x is finite (found by
+            // tests/fuzz): saturate so that the mean stays finite and between mu and x
+            mu = std::isgreater(mu, largest) ? largest : (std::isless(mu, -largest) ? -largest : mu);
         }
         mean[i] = mu;
     });

@@ -16,8 +16,8 @@
 //     samples, max|c| over every state since the last reset (k rounded updates, each off by a few u of the
 //     largest entry it met or by an underflow: with eta = 1 the EWMA's increment c + (d d^T - c) loses a
 //     new d_j^2 of 6e-5 against an old c_jj of 3969 in float, an absolute error u c_old; the shift by tol I
-//     is numerics.md B5's lambda_min >= -||B||), outside the saturated range (entries within a factor 4 of
-//     max, where numerics.md 4.3 clamps and promises no more);
+//     is numerics.md B5's lambda_min >= -||B||), unless an entry has reached the saturated range (within a
+//     factor 4 of max) since the last reset: numerics.md 4.3 clamps entries one by one and promises no more;
 //   - restoring state() gives back the same estimator; a restored state is refused exactly when it is not
 //     finite, has a negative total weight or a negative variance;
 //   - cv_coefficient is finite for any input and 0 when var_g is not above the floor; sample_count lies in
@@ -71,7 +71,9 @@ void check_state(const state_of<T, N>& s, std::uint64_t accepted, long double& l
     largest_seen = std::max(largest_seen, largest);
     for (std::size_t i = 0; i < N; ++i)
         EMCV_FUZZ_ASSERT(s.covariance[emcv::detail::packed_index(i, i, N)] >= T(0));
-    if (largest >= static_cast<long double>(lim::max()) / 4) return;  // saturated: numerics.md 4.3
+    // saturated (now or since the last reset): numerics.md 4.3 clamps entries one by one, which breaks the
+    // PSD structure for as long as the clamped history decays; nothing is promised there but finiteness
+    if (largest_seen >= static_cast<long double>(lim::max()) / 4) return;
     const long double u = lim::epsilon() / 2;
     const long double tol = 32 * u * static_cast<long double>(accepted + 1) * largest_seen +
                             static_cast<long double>(accepted + 1) * 32 * lim::denorm_min();

@@ -192,6 +192,26 @@ TEMPLATE_TEST_CASE("opposite signs near the top of the range: the mean stays fin
     }
 }
 
+TEMPLATE_TEST_CASE("a mean update that rounds past max saturates instead of storing Inf (fuzz finding)", "", float,
+                   double) {
+    // eta = 1 from mu = 1e37 (float) / 1e307 (double) to x = max: mu + (x - mu) rounds above max
+    using T = TestType;
+    const T top = std::numeric_limits<T>::max();
+    const T start = top / T(34);
+    emcv::emcm<T, 1> plain(T(1));
+    emcv::compensated_emcm<T, 1> compensated(T(1));
+    emcv::running_covariance<T, 1> running;
+    for (T x : {start, top}) {
+        plain.push(x);
+        compensated.push(x);
+    }
+    CHECK(plain.mean(0) == top);
+    CHECK(compensated.mean(0) == top);
+    CHECK(std::isfinite(compensated.state().mean_compensation[0]));
+    for (T x : {-top, -top, -top}) running.push(x);
+    CHECK(running.mean(0) == -top);
+}
+
 TEMPLATE_TEST_CASE("invalid eta, weight and decay are refused with std::invalid_argument", "", float, double) {
     using T = TestType;
     for (T eta : {T(0), T(-0.1), T(1.5), std::numeric_limits<T>::quiet_NaN()}) {
