@@ -1,18 +1,18 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets with clang in build-fuzz/ and runs each for a bounded time.
-#   bash scripts/fuzz.sh [SECONDS per target, default 60] [--merge]
-# Each run starts from the repository corpus (tests/fuzz/corpus/<target>/, copied: the run's new inputs go to
-# build-fuzz/corpus/<target>/), with ASan + UBSan; a crash, hang (-timeout 10 s per input) or sanitizer report
-# leaves the input in build-fuzz/artifacts/<target>/ and makes the script exit non-zero. --merge then adds the
-# inputs that reach new coverage to the repository corpus (libFuzzer -merge=1), which CI replays (label fuzz).
+#   bash scripts/fuzz.sh [SECONDS per target, default 60]
+# Each run starts from the repository corpus (tests/fuzz/corpus/<target>/, read only: the run's new inputs go
+# to build-fuzz/corpus/<target>/, kept between runs), with ASan + UBSan; a crash, hang (-timeout 10 s per
+# input), invariant violation or sanitizer report leaves the input in build-fuzz/artifacts/<target>/ and makes
+# the script exit non-zero. Once fixed, copy that input into the repository corpus as regression-<what>: the
+# test command replays the corpus (label fuzz) without clang.
 # Needs clang and libFuzzer: apt-get install clang libclang-rt-14-dev (not part of install-deps.sh: the test
 # command itself does not need them).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
-merge=${2:-}
 case "$seconds" in ''|*[!0-9]*) echo "fuzz.sh: SECONDS must be a whole number, got '$seconds'" >&2; exit 2;; esac
-if [ -n "$merge" ] && [ "$merge" != "--merge" ]; then echo "fuzz.sh: unknown option '$merge' (expected --merge)" >&2; exit 2; fi
+[ $# -le 1 ] || { echo "usage: bash scripts/fuzz.sh [SECONDS per target]" >&2; exit 2; }
 command -v clang++ >/dev/null || { echo "fuzz.sh: clang++ not found (apt-get install clang libclang-rt-14-dev)" >&2; exit 1; }
 
 targets=(estimators)
@@ -33,9 +33,6 @@ for t in "${targets[@]}"; do
   if [ "$rc" -ne 0 ] || [ -n "$(ls -A "$artifacts")" ]; then
     echo "fuzz.sh: $t found a problem (exit $rc); inputs in $artifacts/, log in build-fuzz/$t.log" >&2
     status=1
-  fi
-  if [ "$merge" = "--merge" ]; then
-    build-fuzz/bin/emcv-fuzz-$t -merge=1 "tests/fuzz/corpus/$t" "$work" 2>&1 | grep -E "MERGE-OUTER: [0-9]+ new files" || true
   fi
 done
 exit $status
