@@ -19,6 +19,15 @@
 #include <cstdlib>
 #include <sstream>
 
+// LeakSanitizer: Mesa keeps some allocations until exit (driver caches, LLVM; libOSMesa also after a failed
+// OSMesaCreateContextAttribs): suppress reports whose stack goes through Mesa's libraries only, for every
+// program linking emcv_gl (tests, emcv-glinfo, the demo). LSan stays on for emcv's code; harmless without
+// sanitizers. Defined here because this file is linked into every such program.
+extern "C" const char* __lsan_default_suppressions() {
+    return "leak:libEGL_mesa\nleak:libgallium\nleak:libglapi\nleak:swrast_dri\nleak:libLLVM\nleak:libGLX_mesa\n"
+           "leak:libOSMesa\n";
+}
+
 namespace emcv::gl {
 namespace {
 
