@@ -2,23 +2,31 @@
 // Order of attempts follows Magnum's WindowlessEglApplication (style.md 5.1): EGL_EXT_platform_device
 // (device picked by index), then EGL_MESA_platform_surfaceless, then OSMesa, then a GLFW window on request.
 // The EGL display is never eglTerminate()d: it is a process-wide singleton shared with other users.
+// Once a platform's context is current, gl.hpp's entry points are loaded from that platform's resolver.
 #include "context.hpp"
 
-#define GL_GLEXT_PROTOTYPES 1
+#include "gl.hpp"
+#include "osmesa_platform.hpp"
+
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
-#include <GL/gl.h>
-#include <GL/glext.h>
 
 #ifdef EMCV_GL_HAVE_GLFW
+#define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
-#endif
-#ifdef EMCV_GL_HAVE_OSMESA
-#include <GL/osmesa.h>
 #endif
 
 #include <cstdlib>
 #include <sstream>
+
+// LeakSanitizer: Mesa keeps some allocations until exit (driver caches, LLVM; libOSMesa also after a failed
+// OSMesaCreateContextAttribs): suppress reports whose stack goes through Mesa's libraries only, for every
+// program linking emcv_gl (tests, emcv-glinfo, the demo). LSan stays on for emcv's code; harmless without
+// sanitizers. Defined here because this file is linked into every such program.
+extern "C" const char* __lsan_default_suppressions() {
+    return "leak:libEGL_mesa\nleak:libgallium\nleak:libglapi\nleak:swrast_dri\nleak:libLLVM\nleak:libGLX_mesa\n"
+           "leak:libOSMesa\n";
+}
 
 namespace emcv::gl {
 namespace {
@@ -71,6 +79,28 @@ int env_int(const char* name, int fallback) {
     return static_cast<int>(x);
 }
 
+detail::gl_proc egl_proc(const char* name) { return reinterpret_cast<detail::gl_proc>(eglGetProcAddress(name)); }
+#ifdef EMCV_GL_HAVE_GLFW
+detail::gl_proc glfw_proc(const char* name) { return reinterpret_cast<detail::gl_proc>(glfwGetProcAddress(name)); }
+#endif
+detail::gl_proc osmesa_proc(const char* name) { return detail::osmesa_session::get_proc_address(name); }
+
+/// Loads gl.hpp's table from `get` for the context just made current and checks that it reaches the context:
+/// glGetString(GL_VERSION) answers and glCreateBuffers (GL 4.5 direct state access) names a buffer.
+/// Returns "" or why not.
+std::string load_and_probe(detail::gl_get_proc_address get) {
+    const std::size_t resolved = detail::load_gl_functions(get);
+    if (!glGetString || !glCreateBuffers || !glDeleteBuffers || !glDispatchCompute)
+        return "GL entry points do not resolve (" + std::to_string(resolved) + " of " +
+               std::to_string(detail::gl_function_count()) + ")";
+    if (!glGetString(GL_VERSION)) return "glGetString(GL_VERSION) returned NULL: GL calls do not reach the context";
+    GLuint probe = 0;
+    glCreateBuffers(1, &probe);
+    if (probe == 0) return "glCreateBuffers (GL 4.5 direct state access) does not reach the context";
+    glDeleteBuffers(1, &probe);
+    return {};
+}
+
 }  // namespace
 
 const char* platform_name(platform p) noexcept {
@@ -85,12 +115,7 @@ const char* platform_name(platform p) noexcept {
 
 bool platform_built(platform p) noexcept {
     switch (p) {
-        case platform::osmesa:
-#ifdef EMCV_GL_HAVE_OSMESA
-            return true;
-#else
-            return false;
-#endif
+        case platform::osmesa: return detail::osmesa_built();
         case platform::glfw_window:
 #ifdef EMCV_GL_HAVE_GLFW
             return true;
@@ -126,15 +151,10 @@ struct context::impl {
 #ifdef EMCV_GL_HAVE_GLFW
     GLFWwindow* window = nullptr;
 #endif
-#ifdef EMCV_GL_HAVE_OSMESA
-    OSMesaContext osmesa = nullptr;
-    std::vector<unsigned char> osmesa_buffer;
-#endif
+    std::unique_ptr<detail::osmesa_session> osmesa;
 
     ~impl() {
-#ifdef EMCV_GL_HAVE_OSMESA
-        if (osmesa) OSMesaDestroyContext(osmesa);
-#endif
+        osmesa.reset();
         if (egl_context != EGL_NO_CONTEXT) {
             eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
             eglDestroyContext(display, egl_context);
@@ -171,6 +191,12 @@ struct context::impl {
             const std::string r = egl_fail("eglMakeCurrent");
             eglDestroyContext(dpy, c);
             return r;
+        }
+        const std::string probe = load_and_probe(egl_proc);
+        if (!probe.empty()) {
+            eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+            eglDestroyContext(dpy, c);
+            return probe;
         }
         display = dpy;
         egl_context = c;
@@ -219,43 +245,13 @@ struct context::impl {
     }
 
     attempt_failure try_osmesa(const context_options& o) {
-#ifdef EMCV_GL_HAVE_OSMESA
-        const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0,
-                               OSMESA_PROFILE, OSMESA_CORE_PROFILE,
-                               OSMESA_CONTEXT_MAJOR_VERSION, o.major,
-                               OSMESA_CONTEXT_MINOR_VERSION, o.minor, 0};
-        OSMesaContext c = OSMesaCreateContextAttribs(attribs, nullptr);
-        if (!c) {
-            std::ostringstream m;
-            m << "no OpenGL " << o.major << "." << o.minor << " core context (OSMesaCreateContextAttribs failed)";
-            return {m.str(), false};
-        }
-        // The default framebuffer is a small RGBA8 buffer; rendering goes to framebuffer objects.
-        constexpr int side = 16;
-        osmesa_buffer.assign(side * side * 4, 0);
-        if (!OSMesaMakeCurrent(c, osmesa_buffer.data(), GL_UNSIGNED_BYTE, side, side)) {
-            OSMesaDestroyContext(c);
-            return {"OSMesaMakeCurrent failed", false};
-        }
-        // GL calls reach OSMesa only through libOSMesa's own exports (it precedes libOpenGL on the link line),
-        // and libOSMesa 22.3 does not export the DSA entry points (glCreateBuffers & co.): those resolve to
-        // GLVND's libOpenGL, which cannot see an OSMesa context and silently does nothing. Check both.
-        GLuint probe = 0;
-        if (glGetString(GL_VERSION)) glCreateBuffers(1, &probe);
-        if (probe == 0) {
-            OSMesaMakeCurrent(nullptr, nullptr, GL_UNSIGNED_BYTE, 0, 0);
-            OSMesaDestroyContext(c);
-            return {"OSMesa context created, but GL 4.5 direct-state-access calls (glCreateBuffers) do not reach "
-                    "it: libOSMesa does not export them and GLVND's libOpenGL cannot dispatch to OSMesa",
-                    false};
-        }
-        glDeleteBuffers(1, &probe);
-        osmesa = c;
+        auto session = std::make_unique<detail::osmesa_session>();
+        bool library_missing = false;
+        std::string r = session->create(o.major, o.minor, library_missing);
+        if (r.empty()) r = load_and_probe(osmesa_proc);
+        if (!r.empty()) return {r, library_missing};
+        osmesa = std::move(session);
         return {{}, false};
-#else
-        (void)o;
-        return {"not built (configure with -DEMCV_WITH_OSMESA=ON; Mesa-only, see demo/gl/CMakeLists.txt)", true};
-#endif
     }
 
     attempt_failure try_window(const context_options& o) {
@@ -278,6 +274,8 @@ struct context::impl {
             return {std::string("glfwCreateWindow failed: ") + (d ? d : "unknown error"), false};
         }
         glfwMakeContextCurrent(window);
+        std::string r = load_and_probe(glfw_proc);
+        if (!r.empty()) return {r, false};
         return {{}, false};
 #else
         (void)o;

@@ -134,10 +134,17 @@ EMCV_ALWAYS_INLINE void comoment_step(T* mean, T* mean_low, T* covariance, T* co
             T sum, error;
             two_sum(mu, w.r * di, sum, error);  // sum + error == mu + r d exactly
             const T low_new = mean_low[i] + error;
-            mu = sum + low_new;  // renormalise (fast two-sum): |low| <= ulp(mu) / 2
-            mean_low[i] = low_new - (mu - sum);
+            const T renormalised = sum + low_new;  // renormalise (fast two-sum): |low| <= ulp(mu) / 2
+            const T low_renormalised = low_new - (renormalised - sum);
+            // mu + r d rounded past max (r near 1, x near max): saturate, drop the (NaN) low part
+            const bool above = std::isgreater(sum, largest), below = std::isless(sum, -largest);
+            mu = above ? largest : (below ? -largest : renormalised);
+            mean_low[i] = above || below ? T(0) : low_renormalised;
         } else {
             mu += w.r * di;
+            // with r near 1 and x near max, mu + r d can round past max although x is finite (found by
+            // tests/fuzz): saturate so that the mean stays finite and between mu and x
+            mu = std::isgreater(mu, largest) ? largest : (std::isless(mu, -largest) ? -largest : mu);
         }
         mean[i] = mu;
     });
@@ -263,7 +270,10 @@ public:
             ++s_.rejected;
             return false;
         }
-        const T w_total = decay * s_.total_weight + weight;
+        // two weights near max overflow their sum: W saturates at max like the covariance (numerics.md 4.3),
+        // never Inf (found by tests/fuzz); r = w / W then stays in [0, 1]
+        const T w_sum = decay * s_.total_weight + weight;
+        const T w_total = std::isgreater(w_sum, std::numeric_limits<T>::max()) ? std::numeric_limits<T>::max() : w_sum;
         ++s_.count;
         if (!(w_total > T(0))) {  // every weight is zero: the estimator holds nothing
             s_.total_weight = T(0);
@@ -274,9 +284,11 @@ public:
             return true;
         }
         s_.total_weight = w_total;
-        // A zero weight (r = 0) leaves mean and covariance as they are; skipping the step also keeps an outer
-        // product d d^T beyond the range from meeting r = 0 (0 * Inf is NaN).
-        if (weight > T(0)) step(x, weight / w_total, comoment_form::current_mean);
+        // r = 0 (a zero weight, or one that underflows against W) leaves mean and covariance as they are;
+        // skipped rather than stepped, because 0 * (an outer product that overflowed to Inf) is NaN
+        // (found by tests/fuzz, docs/numerics.md "Fuzzing").
+        const T r = weight / w_total;
+        if (r > T(0)) step(x, r, comoment_form::current_mean);
         return true;
     }
 

@@ -7,11 +7,7 @@
 #include <cstring>
 #include <stdexcept>
 
-// LeakSanitizer: Mesa keeps some allocations until exit (driver caches, LLVM); suppress reports whose stack goes
-// through Mesa's libraries only. Harmless when not built with sanitizers.
-extern "C" const char* __lsan_default_suppressions() {
-    return "leak:libEGL_mesa\nleak:libgallium\nleak:libglapi\nleak:swrast_dri\nleak:libLLVM\nleak:libGLX_mesa\n";
-}
+// LeakSanitizer suppressions for Mesa's own allocations live in demo/gl/context.cpp (every emcv_gl user).
 
 namespace emcv::test {
 

@@ -141,6 +141,37 @@ TEMPLATE_TEST_CASE("a first sample whose square overflows seeds a zero covarianc
     CHECK(r.mean(0) == T(0));
 }
 
+TEMPLATE_TEST_CASE("a zero weight after a saturated covariance changes nothing (fuzz finding)", "", float, double) {
+    // tests/fuzz found it: weights 1 for 0, 0, -max (covariance saturates at max), then a sample of weight 0
+    // at 0.125. r = 0 / W = 0 met an outer product d^2 that overflowed to Inf: 0 * Inf = NaN was stored.
+    const TestType big = std::numeric_limits<TestType>::max();
+    emcv::weighted_covariance<TestType, 2> e;
+    e.push({TestType(0), TestType(0)});
+    e.push({TestType(0), TestType(0)});
+    e.push({-big, big});
+    const auto before = e.state();
+    CHECK(e.push({TestType(0.125), TestType(-0.125)}, TestType(0), TestType(1)));
+    CHECK(e.count() == before.count + 1);
+    for (std::size_t k = 0; k < 3; ++k) CHECK(std::isfinite(e.state().covariance[k]));
+    CHECK(same_bits(e.state(), [&] { auto s = before; s.count += 1; return s; }()));
+    // a weight that underflows against W (r rounds to 0) is the same case
+    CHECK(e.push({TestType(0.5), TestType(0.5)}, std::numeric_limits<TestType>::denorm_min(), TestType(1)));
+    for (std::size_t k = 0; k < 3; ++k) CHECK(std::isfinite(e.state().covariance[k]));
+}
+
+TEMPLATE_TEST_CASE("weights near max saturate the total weight instead of overflowing it (fuzz finding)", "", float,
+                   double) {
+    const TestType big = std::numeric_limits<TestType>::max();
+    emcv::weighted_covariance<TestType, 1> e;
+    CHECK(e.push(TestType(1), big));
+    CHECK(e.push(TestType(3), big));  // W = 2 max would be Inf
+    CHECK(e.total_weight() == big);
+    // r = max / max = 1: the newest sample takes over, everything finite
+    CHECK(e.mean(0) == TestType(3));
+    CHECK(std::isfinite(e.variance(0)));
+    CHECK(emcv::weighted_covariance<TestType, 1>::valid_state(e.state()));
+}
+
 TEMPLATE_TEST_CASE("opposite signs near the top of the range: the mean stays finite and inside the data", "",
                    float, double) {
     using T = TestType;
@@ -159,6 +190,26 @@ TEMPLATE_TEST_CASE("opposite signs near the top of the range: the mean stays fin
             CHECK(e.variance(0) >= T(0));
         }
     }
+}
+
+TEMPLATE_TEST_CASE("a mean update that rounds past max saturates instead of storing Inf (fuzz finding)", "", float,
+                   double) {
+    // eta = 1 from mu = 1e37 (float) / 1e307 (double) to x = max: mu + (x - mu) rounds above max
+    using T = TestType;
+    const T top = std::numeric_limits<T>::max();
+    const T start = top / T(34);
+    emcv::emcm<T, 1> plain(T(1));
+    emcv::compensated_emcm<T, 1> compensated(T(1));
+    emcv::running_covariance<T, 1> running;
+    for (T x : {start, top}) {
+        plain.push(x);
+        compensated.push(x);
+    }
+    CHECK(plain.mean(0) == top);
+    CHECK(compensated.mean(0) == top);
+    CHECK(std::isfinite(compensated.state().mean_compensation[0]));
+    for (T x : {-top, -top, -top}) running.push(x);
+    CHECK(running.mean(0) == -top);
 }
 
 TEMPLATE_TEST_CASE("invalid eta, weight and decay are refused with std::invalid_argument", "", float, double) {

@@ -22,6 +22,8 @@
 
 #include "../support/reference.hpp"
 
+#include <emcv/testing/catch2.hpp>
+
 namespace {
 
 struct gaussian_pair {
@@ -32,6 +34,9 @@ struct gaussian_pair {
         return {3.0 + lx * a, -1.0 + ly * (rho * a + std::sqrt(1 - rho * rho) * b)};
     }
 };
+
+/// Two-sided tail of a 5-sigma normal deviation, erfc(5 / sqrt 2) = 5.7e-7: the level of every check here.
+const double five_sigma_alpha = std::erfc(5.0 / std::sqrt(2.0));
 
 struct weight_sums {
     double s2 = 0, tr_a2 = 0;
@@ -105,8 +110,9 @@ TEST_CASE("moving_stats variance has the EMCM expectation", "[stats]") {
     }
     mean_var /= static_cast<double>(streams);
     const auto ws = sums(eta, updates);
-    const double sd = std::sqrt(2 * sigma2 * sigma2 * ws.tr_a2 / static_cast<double>(streams));
-    CHECK(std::fabs(mean_var - sigma2 * (1 - ws.s2)) <= 5 * sd);
+    // the same 5-sigma rule as a z-test: one stream's variance estimate has sd sqrt(2 sigma^4 tr(A^2))
+    EMCV_CHECK_STAT(emcv::testing::z_test_mean(streams, mean_var, std::sqrt(2 * sigma2 * sigma2 * ws.tr_a2),
+                                               sigma2 * (1 - ws.s2), five_sigma_alpha));
 }
 
 TEST_CASE("running_covariance's sample covariance is unbiased", "[stats]") {
@@ -129,13 +135,16 @@ TEST_CASE("running_covariance's sample covariance is unbiased", "[stats]") {
     const double m = static_cast<double>(streams), nd = static_cast<double>(n);
     mean_sample /= m;
     mean_population /= m;
-    const double sd = std::sqrt(2 * sigma2 * sigma2 / (nd - 1) / m);
-    INFO("n " << n << ": mean sample variance " << mean_sample << ", sigma^2 " << sigma2 << ", sd " << sd);
-    CHECK(std::fabs(mean_sample - sigma2) <= 5 * sd);
-    // the population covariance carries the (n - 1) / n bias; Var[v] = Var[s^2] ((n - 1) / n)^2 <= Var[s^2]
-    CHECK(std::fabs(mean_population - sigma2 * (nd - 1) / nd) <= 5 * sd);
+    // one stream's s^2 has sd sigma^2 sqrt(2 / (n - 1)) (Gaussian); z-tests at the 5-sigma level
+    const double sd_one = sigma2 * std::sqrt(2.0 / static_cast<double>(n - 1));
+    EMCV_CHECK_STAT(emcv::testing::z_test_mean(streams, mean_sample, sd_one, sigma2, five_sigma_alpha));
+    // the population covariance carries the (n - 1) / n bias (and its sd is (n - 1) / n times smaller)
+    const double shrink = static_cast<double>(n - 1) / static_cast<double>(n);
+    EMCV_CHECK_STAT(emcv::testing::z_test_mean(streams, mean_population, sd_one * shrink, sigma2 * shrink,
+                                               five_sigma_alpha));
     // where n is small the test tells the right correction from (n + 1) / n: the two expectations lie more
-    // than 10 sd apart (25 sd at n = 2, 16 sd at n = 3)
+    // than 10 standard errors apart (25 at n = 2, 16 at n = 3)
+    const double sd = sd_one / std::sqrt(m);
     if (n <= 3) CHECK(sigma2 - sigma2 * (nd * nd - 1) / (nd * nd) > 10 * sd);
 }
 

@@ -60,14 +60,14 @@ EMCV_FN bool emcv_emcm2_valid(EMCV_IN(EmcvEmcm2) s) {
 }
 
 /// One coordinate of the mean update, as detail::comoment_step (plain accuracy) in weighted_covariance.hpp:
-///     d = clamp(x - mu, -FLT_MAX, FLT_MAX),  mu' = mu + r d
+///     d = clamp(x - mu, -FLT_MAX, FLT_MAX),  mu' = clamp(mu + r d, -FLT_MAX, FLT_MAX)
 /// (an x - mu that overflows, x and mu of opposite signs near the top of the range, is clamped so the mean
-/// still moves towards x and stays finite). Returns d.
+/// still moves towards x and stays finite; so is a sum that rounds past FLT_MAX). Returns d.
 EMCV_FN float emcv_mean_step(EMCV_INOUT(float) mu, float x, float r) {
     EMCV_PRECISE float d = x - mu;
     d = clamp(d, -emcv_float_max(), emcv_float_max());
     EMCV_PRECISE float m = mu + r * d;
-    mu = m;
+    mu = clamp(m, -emcv_float_max(), emcv_float_max());  // r near 1, x near max: mu + r d can round past max
     return d;
 }
 
