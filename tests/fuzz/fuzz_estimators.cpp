@@ -146,12 +146,15 @@ void run_ops(Estimator& e, input& in, Make make) {
         const state_of<T, N> before = e.state();
         if (op < 12) {  // push a sample
             const auto x = sample<T, N>(in);
-            const bool finite = all_finite<T, N>(x);
+            bool finite = all_finite<T, N>(x);
             bool accepted = false;
             if constexpr (std::is_same_v<Estimator, emcv::weighted_covariance<T, N>>) {
                 const T weight = op < 6 ? T(1) : in.scalar<T>();
                 const T decay = op < 6 ? T(1) : in.scalar<T>();
-                const bool bad = !(weight >= T(0) && std::isfinite(weight)) || !(decay >= T(0) && decay <= T(1));
+                // docs/estimators.md "Bad input": a negative weight or a decay outside [0, 1] throws; a NaN or
+                // +Inf weight is rejected and counted like a non-finite sample
+                const bool bad = weight < T(0) || !(decay >= T(0) && decay <= T(1));
+                finite = finite && weight <= std::numeric_limits<T>::max();
                 try {
                     accepted = e.push(x, weight, decay);
                     EMCV_FUZZ_ASSERT(!bad);

@@ -11,8 +11,10 @@
 #include "../testing.hpp"
 
 namespace Catch {
+/// Prints a test_result as its message when Catch2 shows a value.
 template <>
 struct StringMaker<emcv::testing::test_result> {
+    /// The result's one-line message.
     static std::string convert(const emcv::testing::test_result& r) { return r.message; }
 };
 }  // namespace Catch

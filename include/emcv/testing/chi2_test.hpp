@@ -28,6 +28,7 @@
 
 namespace emcv::testing {
 
+/// Settings of the chi-square goodness-of-fit tests (Mitsuba-style binning and pooling).
 struct chi2_options {
     double alpha = 0.01;            ///< family-wise false-positive rate
     std::size_t test_count = 1;     ///< number of tests in the family (Sidak correction)

@@ -25,6 +25,7 @@
 
 namespace emcv::testing {
 
+/// Settings of the 1/sqrt(n) convergence check.
 struct convergence_options {
     double alpha = 0.01;         ///< false-positive rate
     std::size_t test_count = 1;  ///< Sidak correction over a family of tests

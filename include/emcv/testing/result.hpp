@@ -11,6 +11,7 @@
 
 namespace emcv::testing {
 
+/// The outcome of one statistical test: verdict, statistic, p-value, level and a one-line message.
 struct test_result {
     bool passed = false;   ///< p_value >= alpha: no evidence against the hypothesis at this level
     double statistic = 0;  ///< t, z, chi-square or the fitted convergence order (see the message)
@@ -18,6 +19,7 @@ struct test_result {
     double alpha = 0;      ///< significance level actually used (after the Sidak correction)
     std::string message;   ///< one line: the test, its statistic, p-value, alpha and verdict
 
+    /// True when the test passed (`passed`).
     explicit operator bool() const noexcept { return passed; }
 };
 
