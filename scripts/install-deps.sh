@@ -11,6 +11,7 @@ packages=(
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev   # headless GL (Mesa llvmpipe)
   libopenimageio-dev                       # EXR / PNG output
   nlohmann-json3-dev                       # scene files, JSON output
+  libassimp-dev libmeshoptimizer-dev       # mesh files in scenes; decimating the demo assets
   libbenchmark-dev libboost-dev            # emcv-bench and the Boost.Accumulators comparison
   glslang-tools                            # offline GLSL validation in the tests
   python3 python3-matplotlib python3-numpy # plots in docs/
