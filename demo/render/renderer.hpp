@@ -129,7 +129,8 @@ public:
 
     /// Records and runs the frame's pass list. Frames are rendered in increasing order (motion vectors and
     /// reference reuse compare with the previous call).
-    frame_stats render(int frame);
+    /// Returns this frame's statistics (a reference to the renderer's own, reused every frame: no allocation).
+    const frame_stats& render(int frame);
 
     /// Switches the method (window keys); histories and the cached reference are reset.
     void set_method(const method& m);

@@ -1,0 +1,53 @@
+// SPDX-License-Identifier: MIT
+// Burley screen-space SSS over the SSS tiles (indirect dispatch): N samples per scattering pixel drawn with the
+// widest channel, weighted per channel, sum(w L) / sum(w) (sss.md 1.4, 2.5). Every formula is from
+// include/emcv/port/sss.h. N is the frame's fixed count (burley-N, reference); the adaptive methods will read
+// it per pixel from the count texture instead.
+#version 450 core
+
+#include "emcv/port/sss.h"
+#include "render/gbuffer_read.h"
+#include "render/tiles.h"
+
+layout(local_size_x = EMCV_RENDER_TILE_SIZE, local_size_y = EMCV_RENDER_TILE_SIZE) in;
+
+layout(rgba16f, EMCV_LAYOUT_BINDING(EMCV_RENDER_IMG_SSS_OUT)) writeonly uniform image2D out_scattered;
+layout(r32ui, EMCV_LAYOUT_BINDING(EMCV_RENDER_IMG_COUNT)) writeonly uniform uimage2D out_count;
+
+void main() {
+    ivec2 p = emcv_render_tile_pixel();
+    if (!emcv_render_on_screen(p)) return;
+    uint code = emcv_render_material_code(p);
+    if (!emcv_render_scatters(code)) return;
+
+    vec3 d = emcv_sss_shape_distance(materials[code - 1u].mean_free_path.xyz, texelFetch(gbuffer_albedo, p, 0).xyz);
+    float d_sample = emcv_sss_widest(d);
+    float z = emcv_render_depth(p);
+    float mm_per_unit = frame.camera_position.w;
+    float pixels_per_mm = emcv_sss_pixels_per_mm(frame.projection.x, frame.viewport.x, z, mm_per_unit);
+    bool approximate = (frame.counters.w & EMCV_RENDER_FLAG_APPROXIMATE_CDF) != 0u;
+    vec2 rotation = emcv_sss_rotation(uint(p.x), uint(p.y), frame.counters.x, frame.counters.y);
+    uint n = uint(frame.sss.x);
+
+    vec3 sum_wl = vec3(0.0f);
+    vec3 sum_w = vec3(0.0f);
+    for (uint i = 0u; i < n; ++i) {
+        vec2 u = emcv_sss_sample_uv(i, rotation);
+        float r = emcv_sss_sample_radius(u.x, d_sample, approximate);
+        vec2 offset = emcv_sss_offset_pixels(r, u.y, pixels_per_mm);
+        ivec2 q = ivec2(floor(vec2(p) + 0.5f + offset));
+        // Off-screen and non-scattering samples get weight 0 (sss.md 2.5 mask).
+        if (!emcv_render_on_screen(q) || !emcv_render_scatters(emcv_render_material_code(q))) continue;
+        float dz_mm = (emcv_render_depth(q) - z) * mm_per_unit;
+        vec3 w = emcv_sss_weight(r, emcv_sss_depth_aware_radius(r, dz_mm), d, d_sample);
+        sum_w += w;
+        sum_wl += w * texelFetch(lit_diffuse, q, 0).xyz;
+    }
+    vec3 centre = texelFetch(lit_diffuse, p, 0).xyz;
+    // A channel with no accepted sample keeps the unscattered value (the pixel's own irradiance).
+    vec3 scattered = mix(centre, sum_wl / max(sum_w, vec3(1e-30f)), greaterThan(sum_w, vec3(0.0f)));
+    imageStore(out_scattered, p, vec4(scattered, 1.0f));
+    imageStore(out_count, p, uvec4(n));
+    atomicAdd(stats.sample_sum, n);
+    atomicMax(stats.sample_max, n);
+}
