@@ -14,6 +14,7 @@ packages=(
   libassimp-dev libmeshoptimizer-dev       # mesh files in scenes; decimating the demo assets
   libbenchmark-dev libboost-dev            # emcv-bench and the Boost.Accumulators comparison
   glslang-tools                            # offline GLSL validation in the tests
+  xvfb xauth                               # xvfb-run: the emcv-demo --window test
   python3 python3-matplotlib python3-numpy # plots in docs/
 )
 

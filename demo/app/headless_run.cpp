@@ -35,7 +35,7 @@ std::string frame_file(int frame, const char* extension) {
     return name;
 }
 
-void create_directory(const fs::path& dir) {
+void make_output_directory(const fs::path& dir) {
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec) throw output_error("cannot create directory '" + dir.string() + "': " + ec.message());
@@ -83,8 +83,8 @@ run_result run_headless(const scene& s, const options& o, int frames) {
         result.method_names.push_back(m.name());
     }
     if (o.out) {
-        create_directory(*o.out);
-        for (const method_run& run : runs) create_directory(*o.out / run.m.name());
+        make_output_directory(*o.out);
+        for (const method_run& run : runs) make_output_directory(*o.out / run.m.name());
     }
 
     progress_bar progress(frames);
