@@ -9,6 +9,7 @@
 #include <emcv/emcm.hpp>
 #include <emcv/moving_stats.hpp>
 #include <emcv/sample_count.hpp>
+#include <glm/gtc/packing.hpp>
 
 namespace emcv::cvstudy {
 namespace {
@@ -81,9 +82,32 @@ public:
             }
             case estimator::cv_emcm: fg_.push({f, g}); break;
         }
+        if (c_.half_state != study_config::half_fields::none) store_in_half();
     }
 
 private:
+    /// What an RGBA16F history keeps between frames: every mean and (co)variance rounded to binary16 (the
+    /// count is an integer below 2048, exact in half). A state that overflowed half is refused by the
+    /// estimators' validating constructor and the pixel restarts, as the shader does (docs/numerics.md 4.2).
+    static float half(float x) { return glm::unpackHalf1x16(glm::packHalf1x16(x)); }
+    template <class Estimator>
+    static void round_state(Estimator& e, float eta, bool covariances) {
+        auto s = e.state();
+        for (float& v : s.mean) v = half(v);
+        if (covariances)
+            for (float& v : s.covariance) v = half(v);
+        try {
+            e = Estimator(eta, s);
+        } catch (const std::invalid_argument&) {
+            e.reset();
+        }
+    }
+    void store_in_half() {
+        const bool covariances = c_.half_state == study_config::half_fields::all;
+        if (fg_.count() > 0) round_state(fg_, m_.eta, covariances);
+        if (res_.count() > 0) round_state(res_, c_.eta_res, covariances);
+    }
+
     method_config m_;
     study_config c_;
     emcm<float, 2> fg_;

@@ -39,6 +39,8 @@ struct study_config {
     int spvg_n_min = 8;
     float eta_res = 0.2f;              ///< moving-variance weight of SPVG and of the residual (cv_moving, cv_notex)
     bool sub_pixel = false;            ///< kernels under a pixel: the scattered value equals G exactly (no noise)
+    /// Which stored state fields are rounded to binary16 after each frame (an RGBA16F history).
+    enum class half_fields { none, all, means } half_state = half_fields::none;
 };
 
 /// Light intensity of curve c at frame t (warmup frames first; the switch / first burst at frame `warmup`).

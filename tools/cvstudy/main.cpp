@@ -17,10 +17,12 @@ namespace {
 using namespace emcv::cvstudy;
 
 const char* usage =
-    "usage: emcv-cvstudy [--pixels N] [--seed S]\n"
+    "usage: emcv-cvstudy [--pixels N] [--seed S] [--half-state all|means]\n"
     "  Simulates one SSS pixel's adaptive-sampling loop (PAPER.md section 5) over N pixels (default 400)\n"
     "  with fixed seeds and prints, per light curve, mean samples and PSNR over the 30 frames from the\n"
-    "  switch / first burst, for spvg, the cv residual-variance choices and cv-notex.\n";
+    "  switch / first burst, for spvg, the cv residual-variance choices and cv-notex.\n"
+    "  --half-state all|means rounds every history field, or only the means, to binary16 after each\n"
+    "  frame (what an RGBA16F history keeps).\n";
 
 /// A whole positive integer in [1, max]; throws std::invalid_argument naming the flag otherwise.
 std::uint64_t parse_count(const std::string& flag, const std::string& text, std::uint64_t max) {
@@ -69,10 +71,13 @@ int main(int argc, char** argv) {
                 std::cout << usage;
                 return 0;
             }
-            if (a != "--pixels" && a != "--seed") throw std::invalid_argument("unknown flag '" + a + "'");
+            if (a != "--pixels" && a != "--seed" && a != "--half-state") throw std::invalid_argument("unknown flag '" + a + "'");
             if (i + 1 >= argc) throw std::invalid_argument(a + ": missing value");
             const std::string v = argv[++i];
-            if (a == "--pixels") config.pixels = static_cast<std::size_t>(parse_count(a, v, 1000000));
+            if (a == "--half-state") {
+                if (v != "all" && v != "means") throw std::invalid_argument("--half-state: expected all or means, got '" + v + "'");
+                config.half_state = v == "all" ? study_config::half_fields::all : study_config::half_fields::means;
+            } else if (a == "--pixels") config.pixels = static_cast<std::size_t>(parse_count(a, v, 1000000));
             else config.seed = parse_count(a, v, UINT64_MAX);
         }
     } catch (const std::invalid_argument& e) {
@@ -89,7 +94,11 @@ int main(int argc, char** argv) {
 
     std::cout << "emcv-cvstudy: " << config.pixels << " pixels, seed " << config.seed << ", target "
               << config.target << ", N_max " << config.n_max << "; window: " << config.window_frames
-              << " frames after " << config.warmup_frames << " warm-up frames\n";
+              << " frames after " << config.warmup_frames << " warm-up frames; history state in "
+              << (config.half_state == study_config::half_fields::none
+                      ? "fp32"
+                      : config.half_state == study_config::half_fields::all ? "binary16" : "fp32, means in binary16")
+              << "\n";
     print_table("light-off: switch 1 -> 0.25 (the 30 frames from the switch)", light_curve::switch_off, methods,
                 config);
     print_table("flicker: bursts of 2 frames at 1 over 0.3, every 10 frames", light_curve::flicker, methods, config);
