@@ -13,10 +13,11 @@
 // "sss-tiles" and the SSS passes are not recorded at all for `diffuse`, for a scene with no SSS material, or
 // when every SSS object lies outside the view frustum (decided on the CPU from the scene, pass_list).
 //
-// Timing: each pass has a GPU timer ring (demo/gl/timer.hpp). With timing::per_frame (headless evaluation)
-// render() waits for the frame's queries at its end, so frame_stats holds this frame's times. With
-// timing::asynchronous (interactive window) render() never waits: frame_stats holds the newest finished
-// measurement of each pass (a few frames old), or 0 before the first one is ready.
+// Timing: with timing::per_frame (headless evaluation, the default) each pass is bracketed by glFinish and
+// timed on the steady clock, so frame_stats holds this frame's times (on llvmpipe, whose GL_TIME_ELAPSED
+// queries miss compute dispatches, the only correct measure). With timing::asynchronous (interactive window)
+// each pass has a GPU timer ring (demo/gl/timer.hpp) and render() never waits: frame_stats holds the newest
+// finished measurement of each pass (a few frames old), or 0 before the first one is ready.
 // frame_ms is the sum of the frame's pass times (GL_TIME_ELAPSED queries cannot nest, and every GPU command
 // of a frame is inside one pass); sss_ms is the sum of the sss-* passes.
 #pragma once
