@@ -83,7 +83,8 @@ int main(int argc, char** argv) {
             const run_result result = run_headless(s, o, frames);
             std::cout << "scene " << s.name << ", " << o.width << "x" << o.height << ", " << frames
                       << " frames, seed " << o.seed << ", " << context.renderer() << '\n'
-                      << "times: GPU ms per frame (mean, p95); spp: samples per SSS pixel; PSNR: dB of the "
+                      << "times: GPU ms per frame (mean, p95) from frame 1 on (frame 0 is warm-up); spp: samples per SSS "
+                         "pixel; PSNR: dB of the "
                          "display image against the reference's, mean over frames\n"
                       << format_summary(summarize(result.rows, result.method_names));
             if (o.out) std::cout << "wrote " << o.out->string() << "/{metrics.csv,metrics.json,<method>/frame-*.png}\n";

@@ -48,19 +48,25 @@ double percentile(std::vector<double> values, double p) {
     return values[below] + t * (values[above] - values[below]);
 }
 
-std::vector<method_summary> summarize(const std::vector<metrics_row>& rows, const std::vector<std::string>& methods) {
+std::vector<method_summary> summarize(const std::vector<metrics_row>& rows, const std::vector<std::string>& methods,
+                                      int timing_from_frame) {
     std::vector<method_summary> out;
     for (const std::string& name : methods) {
         method_summary s;
         s.method = name;
+        bool late_frames = false;
+        for (const metrics_row& r : rows) late_frames = late_frames || (r.method == name && r.frame >= timing_from_frame);
         std::vector<double> sss_ms;
         std::vector<std::optional<double>> psnr, psnr_sss;
         double frame_ms = 0.0, spp = 0.0;
         for (const metrics_row& r : rows) {
             if (r.method != name) continue;
             ++s.frames;
-            sss_ms.push_back(r.sss_ms);
-            frame_ms += r.frame_ms;
+            if (!late_frames || r.frame >= timing_from_frame) {
+                ++s.timed_frames;
+                sss_ms.push_back(r.sss_ms);
+                frame_ms += r.frame_ms;
+            }
             spp += r.mean_spp;
             s.max_spp = std::max(s.max_spp, r.max_spp);
             psnr.push_back(r.psnr_db);
@@ -69,9 +75,9 @@ std::vector<method_summary> summarize(const std::vector<metrics_row>& rows, cons
         if (s.frames > 0) {
             double sum = 0.0;
             for (double v : sss_ms) sum += v;
-            s.sss_ms_mean = sum / s.frames;
+            s.sss_ms_mean = sum / s.timed_frames;
             s.sss_ms_p95 = percentile(sss_ms, 95.0);
-            s.frame_ms_mean = frame_ms / s.frames;
+            s.frame_ms_mean = frame_ms / s.timed_frames;
             s.mean_spp = spp / s.frames;
         }
         s.psnr_db = mean_psnr(psnr);

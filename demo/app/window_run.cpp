@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 #include <vector>
 
@@ -34,22 +35,45 @@ struct window_state {
     bool restart = false;
 };
 
-void on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mods*/) {
-    if (action != GLFW_PRESS) return;
-    auto* state = static_cast<window_state*>(glfwGetWindowUserPointer(window));
-    if (!state) return;
+/// One key press: changes `state`; Esc/Q closes the window.
+void apply_key(GLFWwindow* window, window_state& state, int key) {
     if (key == GLFW_KEY_ESCAPE || key == GLFW_KEY_Q) glfwSetWindowShouldClose(window, GLFW_TRUE);
-    else if (key == GLFW_KEY_M) ++state->method_step;
-    else if (key == GLFW_KEY_N) --state->method_step;
-    else if (key == GLFW_KEY_H) state->heatmap = !state->heatmap;
-    else if (key == GLFW_KEY_R) state->restart = true;
+    else if (key == GLFW_KEY_M) ++state.method_step;
+    else if (key == GLFW_KEY_N) --state.method_step;
+    else if (key == GLFW_KEY_H) state.heatmap = !state.heatmap;
+    else if (key == GLFW_KEY_R) state.restart = true;
     else if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9) {
         const auto light = static_cast<std::size_t>(key - GLFW_KEY_1);
-        if (light < state->light_on.size()) {
-            state->light_on[light] = !state->light_on[light];
-            state->lights_changed = true;
+        if (light < state.light_on.size()) {
+            state.light_on[light] = !state.light_on[light];
+            state.lights_changed = true;
         }
     }
+}
+
+void on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mods*/) {
+    if (action != GLFW_PRESS) return;
+    if (auto* state = static_cast<window_state*>(glfwGetWindowUserPointer(window))) apply_key(window, *state, key);
+}
+
+/// $EMCV_DEMO_KEYS: comma-separated keys (M, N, H, R, Q, 1..9; empty: none) pressed one per frame after the
+/// first, as if typed; how the Xvfb test drives the keys without an input device.
+std::vector<int> scripted_keys() {
+    std::vector<int> keys;
+    const char* env = std::getenv("EMCV_DEMO_KEYS");
+    if (!env) return keys;
+    const std::string text = env;
+    std::size_t start = 0;
+    while (start <= text.size()) {
+        const std::size_t comma = std::min(text.find(',', start), text.size());
+        const std::string item = text.substr(start, comma - start);
+        if (item.size() != 1 || std::string("MNHRQ123456789").find(item[0]) == std::string::npos)
+            throw std::runtime_error("EMCV_DEMO_KEYS: unknown key '" + item + "' (expected M, N, H, R, Q or 1..9)");
+        keys.push_back(item[0] >= '1' && item[0] <= '9' ? GLFW_KEY_1 + (item[0] - '1')
+                                                        : GLFW_KEY_A + (item[0] - 'A'));
+        start = comma + 1;
+    }
+    return keys;
 }
 
 /// A texture with a framebuffer around it, for glBlitNamedFramebuffer to the window.
@@ -106,10 +130,21 @@ int run_window(gl::context& ctx, const scene& s, const options& o, std::optional
     const blit_source display = make_blit_source(r.display_texture(), o.width, o.height);
     const blit_source heat = make_blit_source(0, o.width, o.height);
 
+    const std::vector<int> script = scripted_keys();
     int shown = 0;
     int frame = 0;
     const int sequence = std::max(1, s.frames);
     while (!frame_limit || shown < *frame_limit) {
+        const window_state before = state;
+        if (shown >= 1 && static_cast<std::size_t>(shown - 1) < script.size())
+            apply_key(window, state, script[static_cast<std::size_t>(shown - 1)]);
+        if (glfwWindowShouldClose(window)) break;
+        // Each change is reported on stdout, so a run under Xvfb shows what the keys did.
+        if (state.heatmap != before.heatmap) std::printf("frame %d: heatmap %s\n", shown, state.heatmap ? "on" : "off");
+        for (std::size_t i = 0; i < state.light_on.size(); ++i)
+            if (state.light_on[i] != before.light_on[i])
+                std::printf("frame %d: light %s %s\n", shown, s.lights[i].name.c_str(), state.light_on[i] ? "on" : "off");
+        if (state.restart) std::printf("frame %d: restart\n", shown);
         if (state.method_step != 0) {
             const auto count = static_cast<long>(o.methods.size());
             const long next = ((static_cast<long>(method_index) + state.method_step) % count + count) % count;
@@ -117,6 +152,7 @@ int run_window(gl::context& ctx, const scene& s, const options& o, std::optional
             state.method_step = 0;
             r.set_method(o.methods[method_index]);  // resets histories
             frame = 0;
+            std::printf("frame %d: method %s\n", shown, r.current_method().name().c_str());
         }
         if (state.restart || frame >= sequence) {
             r.set_method(r.current_method());  // the sequence loops: start it again with fresh histories

@@ -2,6 +2,8 @@
 // --window: the same renderer shown in a GLFW window. Keys (also printed at start):
 //   M / N  next / previous method      1..9  toggle light 1..9      H  sample-count heatmap on/off
 //   R      restart the sequence        Esc, Q  quit
+// Every change is printed on stdout ("frame 3: method diffuse"). $EMCV_DEMO_KEYS="M,H,1" presses keys, one per
+// frame after the first, as if typed (the Xvfb test).
 // The sequence loops over the scene's frames; --frames N ends the run after N frames (the Xvfb test).
 #pragma once
 

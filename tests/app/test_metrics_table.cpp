@@ -99,12 +99,22 @@ TEST_CASE("percentile interpolates between order statistics", "[app][summary]") 
 }
 
 TEST_CASE("summary averages per method, keeps the maximum count, skips the reference's inf", "[app][summary]") {
-    const auto s = app::summarize(sample_rows(), {"burley-16", "reference"});
+    const auto s = app::summarize(sample_rows(), {"burley-16", "reference"}, 0);  // times over every frame
     REQUIRE(s.size() == 2);
     CHECK(s[0].frames == 2);
     CHECK(s[0].sss_ms_mean == Catch::Approx(2.0));
     CHECK(s[0].sss_ms_p95 == Catch::Approx(1.5 + 0.95 * 1.0));
     CHECK(s[0].frame_ms_mean == Catch::Approx(4.5));
+    // The default leaves frame 0 (warm-up) out of the times, not out of the counts or the PSNR.
+    const auto steady = app::summarize(sample_rows(), {"burley-16"});
+    CHECK(steady[0].timed_frames == 1);
+    CHECK(steady[0].sss_ms_mean == Catch::Approx(2.5));
+    CHECK(steady[0].frame_ms_mean == Catch::Approx(5.0));
+    CHECK(*steady[0].psnr_db == Catch::Approx(31.0));
+    // A one-frame run has only the warm-up frame: timed anyway.
+    const auto single = app::summarize({sample_rows()[0]}, {"burley-16"});
+    CHECK(single[0].timed_frames == 1);
+    CHECK(single[0].sss_ms_mean == Catch::Approx(1.5));
     CHECK(*s[0].psnr_db == Catch::Approx(31.0));
     CHECK(*s[0].psnr_sss_db == Catch::Approx(25.0));  // frame 1 has no SSS pixel: not averaged in
     CHECK(s[1].max_spp == 1024);
