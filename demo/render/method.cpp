@@ -37,6 +37,9 @@ std::optional<int> suffix_number(std::string_view text, std::string_view prefix)
 std::optional<method> parse_method(std::string_view text) {
     if (text == "diffuse") return method{method::kind::diffuse, 0};
     if (text == "reference") return make_reference(default_reference_samples);
+    if (text == "spvg") return method{method::kind::spvg, 0};
+    if (text == "cv") return method{method::kind::cv, 0};
+    if (text == "cv-notex") return method{method::kind::cv_notex, 0};
     if (text == "separable") return method{method::kind::separable, default_separable_taps};
     if (const auto taps = suffix_number(text, "separable-")) {
         if (*taps == 11 || *taps == 17 || *taps == 25) return method{method::kind::separable, *taps};
@@ -53,7 +56,8 @@ method make_reference(int samples) { return method{method::kind::reference, samp
 
 std::vector<method> all_methods() {
     return {method{method::kind::diffuse, 0}, method{method::kind::burley, 16},
-            method{method::kind::separable, default_separable_taps}, make_reference(default_reference_samples)};
+            method{method::kind::separable, default_separable_taps}, make_reference(default_reference_samples),
+            method{method::kind::spvg, 0}, method{method::kind::cv, 0}, method{method::kind::cv_notex, 0}};
 }
 
 }  // namespace emcv::demo

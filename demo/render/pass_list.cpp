@@ -30,6 +30,10 @@ std::vector<std::string> pass_list(const scene& s, const method& m, int frame, i
         if (m.type == method::kind::separable) {
             passes.emplace_back("sss-separable-h");
             passes.emplace_back("sss-separable-v");
+        } else if (m.type == method::kind::spvg || m.type == method::kind::cv || m.type == method::kind::cv_notex) {
+            passes.emplace_back("sss-adaptive-samples");  // N per pixel from the reprojected history
+            passes.emplace_back("sss-burley");
+            passes.emplace_back("sss-adaptive-update");   // this frame's (f, G) into the history
         } else {
             passes.emplace_back("sss-burley");
         }

@@ -18,6 +18,7 @@
 #include "gl/handles.hpp"
 #include "gl/program.hpp"
 #include "gl/timer.hpp"
+#include "adaptive/history.hpp"
 #include "gpu_types.hpp"
 #include "render/bindings.h"
 #include "separable_kernel.hpp"
@@ -112,6 +113,9 @@ struct renderer::impl {
 
     gl::program gbuffer_program, shadow_program, lighting_program, tiles_program, burley_program,
         separable_program, composite_program;
+    gl::preprocess_options shader_options;  // kept for the adaptive passes, built on a method switch
+    fs::path shader_root;
+    std::optional<adaptive::history> adaptive_state;  // spvg, cv, cv-notex only
 
     gl::buffer vertices, indices, object_ids;
     gl::vertex_array vao;
@@ -133,6 +137,7 @@ struct renderer::impl {
     // Pass slots: gbuffer, one per shadow layer, lighting, sss-tiles, sss-burley, sss-separable-h, -v, composite.
     std::vector<timed_pass> passes;
     std::size_t slot_lighting = 0, slot_tiles = 0, slot_burley = 0, slot_sep_h = 0, slot_sep_v = 0, slot_composite = 0;
+    std::size_t slot_adaptive_samples = 0, slot_adaptive_update = 0;
 
     gpu::frame_block frame_data{};
     std::vector<gpu::light_block> light_data;
@@ -152,6 +157,7 @@ struct renderer::impl {
 
     impl(const scene& sc, method me, render_options op);
     void build_programs();
+    void make_adaptive_state();
     void upload_geometry();
     void make_targets();
     void upload_materials();
@@ -180,6 +186,7 @@ renderer::impl::impl(const scene& sc, method me, render_options op)
     build_programs();
     upload_geometry();
     make_targets();
+    make_adaptive_state();
     light_scale.assign(s.lights.size(), 1.0f);
     upload_materials();
     signature.assign(6 + 3 * s.lights.size(), 0.0f);
@@ -215,7 +222,9 @@ renderer::impl::impl(const scene& sc, method me, render_options op)
     };
     slot_lighting = add("lighting");
     slot_tiles = add("sss-tiles");
+    slot_adaptive_samples = add("sss-adaptive-samples");
     slot_burley = add("sss-burley");
+    slot_adaptive_update = add("sss-adaptive-update");
     slot_sep_h = add("sss-separable-h");
     slot_sep_v = add("sss-separable-v");
     slot_composite = add("composite");
@@ -236,6 +245,17 @@ void renderer::impl::build_programs() {
     burley_program = gl::program::compute(dir / "sss_burley.comp.glsl", pre);
     separable_program = gl::program::compute(dir / "sss_separable.comp.glsl", pre);
     composite_program = gl::program::compute(dir / "composite.comp.glsl", pre);
+    shader_options = pre;
+    shader_root = shader_dir;
+}
+
+/// The adaptive methods' history and passes, allocated only for them (demo/render/adaptive).
+void renderer::impl::make_adaptive_state() {
+    adaptive_state.reset();
+    if (m.type == method::kind::spvg) adaptive_state.emplace(adaptive::kind::spvg, width, height, shader_options, shader_root);
+    if (m.type == method::kind::cv) adaptive_state.emplace(adaptive::kind::cv, width, height, shader_options, shader_root);
+    if (m.type == method::kind::cv_notex)
+        adaptive_state.emplace(adaptive::kind::cv_notex, width, height, shader_options, shader_root);
 }
 
 void renderer::impl::upload_geometry() {
@@ -434,7 +454,7 @@ void renderer::impl::update_frame(int frame, const view_matrices& v, bool sss_ra
     frame_data.counters = glm::uvec4(static_cast<std::uint32_t>(frame), o.seed,
                                      static_cast<std::uint32_t>(s.lights.size()), flags);
     const bool burley_like = m.type == method::kind::burley || m.type == method::kind::reference;
-    frame_data.sss = glm::ivec4(burley_like ? m.samples : 0, 0, static_cast<int>(s.materials.size()), 0);
+    frame_data.sss = glm::ivec4(burley_like ? m.samples : 0, adaptive_state ? 1 : 0, static_cast<int>(s.materials.size()), 0);
     glNamedBufferSubData(frame_ubo.id(), 0, sizeof frame_data, &frame_data);
 
     for (std::size_t i = 0; i < s.lights.size(); ++i) {
@@ -577,6 +597,11 @@ const frame_stats& renderer::impl::render(int frame) {
             image_barrier_for_reads();
             end_pass(slot_sep_v);
         } else {
+            if (adaptive_state) {
+                begin_pass(slot_adaptive_samples);
+                adaptive_state->record_samples();
+                end_pass(slot_adaptive_samples);
+            }
             begin_pass(slot_burley);
             burley_program.use();
             glBindImageTexture(EMCV_RENDER_IMG_SSS_OUT, sss_out.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -584,6 +609,11 @@ const frame_stats& renderer::impl::render(int frame) {
             image_barrier_for_reads();
             glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
             end_pass(slot_burley);
+            if (adaptive_state) {
+                begin_pass(slot_adaptive_update);
+                adaptive_state->record_update(sss_out.id());
+                end_pass(slot_adaptive_update);
+            }
         }
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
     } else if (!sss_pass && counts_dirty) {
@@ -601,6 +631,7 @@ const frame_stats& renderer::impl::render(int frame) {
         end_pass(slot_composite);
     }
     glBindVertexArray(0);
+    if (adaptive_state) adaptive_state->end_frame(gb_depth.id(), gb_normal.id(), gb_material.id(), sss_pass);
     prev_view_proj = v.view_proj;
     has_previous = true;
 
@@ -636,6 +667,10 @@ const frame_stats& renderer::impl::render(int frame) {
     }
 
     std::size_t n = 0;
+    // Back to one entry per pass slot: an earlier frame may have recorded fewer passes (a reused reference)
+    // and shrunk the list, and stats.passes[n++] below must stay in bounds (it was heap corruption at
+    // light-off's switch, frame 31). Within the capacity reserved in the constructor: no allocation.
+    stats.passes.resize(passes.size());
     stats.sss_ms = 0.0;
     stats.frame_ms = 0.0;
     for (timed_pass& p : passes) {
@@ -665,6 +700,7 @@ void renderer::set_method(const method& m) {
     p_->m = m;
     p_->reference_valid = false;
     p_->upload_materials();  // separable kernels follow the tap count
+    p_->make_adaptive_state();
 }
 
 const method& renderer::current_method() const { return p_->m; }
@@ -726,6 +762,12 @@ gl::float_image renderer::sample_counts() const {
 }
 
 GLuint renderer::display_texture() const { return p_->display_out.id(); }
+gl::float_image renderer::cv_alpha() const {
+    if (p_->adaptive_state) return p_->adaptive_state->alpha();
+    gl::float_image img = single_channel(p_->width, p_->height);
+    return img;
+}
+adaptive::history* renderer::adaptive_history() { return p_->adaptive_state ? &*p_->adaptive_state : nullptr; }
 int renderer::width() const { return p_->width; }
 int renderer::height() const { return p_->height; }
 

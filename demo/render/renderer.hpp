@@ -37,6 +37,10 @@
 
 namespace emcv::demo {
 
+namespace adaptive {
+class history;  // demo/render/adaptive/history.hpp
+}
+
 /// A scattering method, as named on the command line (`--method`).
 struct method {
     enum class kind { diffuse, burley, separable, reference, spvg, cv, cv_notex };
@@ -57,11 +61,11 @@ inline constexpr int default_separable_taps = 17;
 inline constexpr int default_reference_samples = 1024;
 
 /// "diffuse", "burley-N" (N in 1..1024), "separable" (17 taps), "separable-11|17|25", "reference"
-/// (1024 samples); nullopt for anything else, and for the adaptive methods until they are implemented.
+/// (1024 samples), "spvg", "cv", "cv-notex"; nullopt for anything else.
 std::optional<method> parse_method(std::string_view text);
 
-/// Every implemented method, in summary order: diffuse, burley-16, separable-17, reference (then, once
-/// implemented, spvg, cv, cv-notex). What `--method all` renders.
+/// Every implemented method, in summary order: diffuse, burley-16, separable-17, reference, spvg, cv,
+/// cv-notex. What `--method all` renders.
 std::vector<method> all_methods();
 
 /// The reference with an explicit sample count (tests: convergence against a 4x-sample render).
@@ -149,6 +153,11 @@ public:
     gl::float_image sample_counts() const;
     /// Linear RGBA diffuse irradiance without albedo, before scattering (the lighting pass's output).
     gl::float_image diffuse_irradiance() const;
+    /// cv: the control-variate coefficient alpha = C_fG / C_GG per pixel from the history (heatmap); zeros for
+    /// the other methods.
+    gl::float_image cv_alpha() const;
+    /// The adaptive methods' history (spvg, cv, cv-notex; nullptr otherwise): read back, poisoned by tests.
+    adaptive::history* adaptive_history();
     /// The display texture (RGBA8 sRGB-encoded values, width x height), for the window to blit.
     GLuint display_texture() const;
 

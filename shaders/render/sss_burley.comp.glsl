@@ -8,11 +8,14 @@
 #include "emcv/port/sss.h"
 #include "render/gbuffer_read.h"
 #include "render/tiles.h"
+#include "adaptive/bindings.h"
 
 layout(local_size_x = EMCV_RENDER_TILE_SIZE, local_size_y = EMCV_RENDER_TILE_SIZE) in;
 
 layout(rgba16f, EMCV_LAYOUT_BINDING(EMCV_RENDER_IMG_SSS_OUT)) writeonly uniform image2D out_scattered;
 layout(r32ui, EMCV_LAYOUT_BINDING(EMCV_RENDER_IMG_COUNT)) writeonly uniform uimage2D out_count;
+// Adaptive methods (frame.sss.y = 1): N per pixel from the adaptive-samples pass (shaders/adaptive).
+layout(r32ui, EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_IMG_SAMPLES)) readonly uniform uimage2D adaptive_samples;
 
 void main() {
     ivec2 p = emcv_render_tile_pixel();
@@ -27,7 +30,7 @@ void main() {
     float pixels_per_mm = emcv_sss_pixels_per_mm(frame.projection.x, frame.viewport.x, z, mm_per_unit);
     bool approximate = (frame.counters.w & EMCV_RENDER_FLAG_APPROXIMATE_CDF) != 0u;
     vec2 rotation = emcv_sss_rotation(uint(p.x), uint(p.y), frame.counters.x, frame.counters.y);
-    uint n = uint(frame.sss.x);
+    uint n = frame.sss.y != 0 ? imageLoad(adaptive_samples, p).x : uint(frame.sss.x);
 
     vec3 sum_wl = vec3(0.0f);
     vec3 sum_w = vec3(0.0f);
