@@ -58,15 +58,13 @@ public:
         // reprojection, instead of trusting a 0 that n_min = 0 would turn into no samples.
         const std::uint64_t seen = m_.kind == estimator::cv_emcm ? fg_.count() : res_.count();
         if (seen < 2) return c_.n_max;
-        const int n_min = m_.n_min >= 0 ? m_.n_min : (m_.kind == estimator::spvg ? c_.spvg_n_min : 0);
-        switch (m_.kind) {
-            case estimator::spvg:
-            case estimator::cv_moving:
-            case estimator::cv_notex: return sample_count(res_.variance(), c_.target, n_min, c_.n_max);
-            case estimator::cv_emcm:
-                return sample_count(cv_optimal_residual_variance(fg_), c_.target, n_min, c_.n_max);
-        }
-        return c_.n_max;
+        const float variance =
+            m_.kind == estimator::cv_emcm ? cv_optimal_residual_variance(fg_) : res_.variance();
+        if (m_.n_min >= 0) return sample_count(variance, c_.target, m_.n_min, c_.n_max);
+        // The renderer's rules (include/emcv/port/history.h): the cv family takes 0 samples only where the
+        // residual variance is exactly 0 (a sub-pixel kernel), SPVG's clamp otherwise.
+        if (m_.kind != estimator::spvg && variance == 0.0f) return 0;
+        return sample_count(variance, c_.target, c_.spvg_n_min, c_.n_max);
     }
 
     void push(float f, float g) {

@@ -17,15 +17,18 @@ enum class light_curve { switch_off, flicker, sinusoid, constant };
 /// How a method turns its history into the next frame's sample count.
 enum class estimator {
     spvg,           ///< moving mean/variance (eta 0.2) of f; N = clamp(var / target, 8, 64)
-    cv_moving,      ///< EMCM(eta) over (f, G) gives alpha; moving variance (eta 0.2) of r = f - alpha G; n_min 0
-    cv_emcm,        ///< EMCM(eta) over (f, G); Var(f - alpha G) = C_ff - C_fG^2 / C_GG; n_min 0
-    cv_notex,       ///< alpha = 1: moving variance (eta 0.2) of r = f - G; n_min 0
+    cv_moving,      ///< EMCM(eta) over (f, G) gives alpha; moving variance (eta 0.2) of r = f - alpha G
+    cv_emcm,        ///< EMCM(eta) over (f, G); Var(f - alpha G) = C_ff - C_fG^2 / C_GG
+    cv_notex,       ///< alpha = 1: moving variance (eta 0.2) of r = f - G
 };
 
 struct method_config {
     estimator kind = estimator::spvg;
     float eta = 0.2f;  ///< EMCM weight (cv_moving, cv_emcm); the moving-variance weight is always 0.2
-    int n_min = -1;    ///< -1: the method's own (spvg 8, the cv family 0)
+    /// -1: the method's own rule: spvg clamp(var / target, 8, 64); the cv family the renderer's rule
+    /// (include/emcv/port/history.h): 0 samples when the residual variance is exactly 0, else SPVG's clamp.
+    /// >= 0: plain clamp(var / target, n_min, 64).
+    int n_min = -1;
     std::string name() const;
 };
 

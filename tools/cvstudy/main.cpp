@@ -89,8 +89,9 @@ int main(int argc, char** argv) {
     for (float eta : {0.05f, 0.1f, 0.2f}) methods.push_back({estimator::cv_moving, eta});
     for (float eta : {0.05f, 0.1f, 0.2f}) methods.push_back({estimator::cv_emcm, eta});
     methods.push_back({estimator::cv_notex, 0.2f});
-    // How much of the difference is SPVG's floor n_min = 8 rather than the control variate.
-    methods.push_back({estimator::cv_emcm, 0.05f, 8});
+    // The plain n_min = 0 the paper describes, for comparison with the renderer's rule.
+    for (float eta : {0.05f, 0.2f}) methods.push_back({estimator::cv_emcm, eta, 0});
+    methods.push_back({estimator::cv_notex, 0.2f, 0});
 
     std::cout << "emcv-cvstudy: " << config.pixels << " pixels, seed " << config.seed << ", target "
               << config.target << ", N_max " << config.n_max << "; window: " << config.window_frames

@@ -94,17 +94,27 @@ EMCV_FN int emcv_history_count_spvg(EMCV_IN(EmcvMovingStats) s) {
     return emcv_sample_count(s.variance, EMCV_HISTORY_TARGET, EMCV_HISTORY_SPVG_N_MIN, EMCV_HISTORY_N_MAX);
 }
 
-/// cv-notex: the moving variance of r = f - G, n_min = 0.
-EMCV_FN int emcv_history_count_notex(EMCV_IN(EmcvMovingStats) s) {
-    if (s.count < 2u) return EMCV_HISTORY_N_MAX;
-    return emcv_sample_count(s.variance, EMCV_HISTORY_TARGET, 0, EMCV_HISTORY_N_MAX);
+/// The control-variate methods' count from a residual variance: 0 samples when the residual variance is 0
+/// (f has never left alpha G: a sub-pixel kernel, whose scattered value is the pixel's own diffuse), else
+/// SPVG's clamp(var / 1e-4, 8, 64), NaN -> 64. The floor 8 stays for every pixel that has any residual
+/// variance, so a static scene is sampled as SPVG samples it (docs/renderer.md: a plain n_min = 0 took 1
+/// sample per pixel on light-off's static frames, 13 dB under SPVG); the gain comes from the residual
+/// variance staying low when the light changes.
+EMCV_FN int emcv_history_count_residual(float residual_variance) {
+    if (residual_variance == 0.0f) return 0;
+    return emcv_sample_count(residual_variance, EMCV_HISTORY_TARGET, EMCV_HISTORY_SPVG_N_MIN, EMCV_HISTORY_N_MAX);
 }
 
-/// cv: Var(f - alpha G) = C_ff - C_fG^2 / C_GG from the EMCM (the joint optimum of N and alpha), n_min = 0.
+/// cv-notex: the moving variance of r = f - G (alpha = 1).
+EMCV_FN int emcv_history_count_notex(EMCV_IN(EmcvMovingStats) s) {
+    if (s.count < 2u) return EMCV_HISTORY_N_MAX;
+    return emcv_history_count_residual(s.variance);
+}
+
+/// cv: Var(f - alpha G) = C_ff - C_fG^2 / C_GG from the EMCM (the joint optimum of N and alpha).
 EMCV_FN int emcv_history_count_cv(EMCV_IN(EmcvEmcm2) s) {
     if (s.count < 2u) return EMCV_HISTORY_N_MAX;
-    return emcv_sample_count(emcv_cv_optimal_residual_variance_emcm2(s), EMCV_HISTORY_TARGET, 0,
-                             EMCV_HISTORY_N_MAX);
+    return emcv_history_count_residual(emcv_cv_optimal_residual_variance_emcm2(s));
 }
 
 EMCV_PORT_END
