@@ -124,6 +124,7 @@ TEST_CASE("is_constant agrees with evaluating the curve frame by frame") {
         curve{},
         steps_curve(1.0f, {{5, 0.0f}}), steps_curve(1.0f, {{0, 0.0f}}), steps_curve(1.0f, {{5, 1.0f}}),
         steps_curve(1.0f, {{0, 2.0f}, {7, 2.0f}}), steps_curve(1.0f, {{0, 2.0f}, {7, 1.0f}}),
+        steps_curve(1.0f, {{-5, 3.0f}, {0, 2.0f}}),  // steps before frame 0 are history, not change
         flicker_curve(0.0f, 1.0f, {4}, 1), flicker_curve(1.0f, 1.0f, {4}, 3), flicker_curve(0.0f, 1.0f, {}, 1),
         sinusoid_curve(1.0f, 0.5f, 8.0f, 0.0f), sinusoid_curve(1.0f, 0.0f, 8.0f, 1.0f),
         sinusoid_curve(1.0f, 0.5f, 1.0f, 0.7f), sinusoid_curve(1.0f, 0.5f, 0.5f, 0.7f),
