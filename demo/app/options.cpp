@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "options.hpp"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -167,10 +168,15 @@ void check_output_directory(const std::filesystem::path& dir) {
                                                    : "cannot be created: '" + probe.string() + "' is not a directory";
         throw usage_error("--out: '" + dir.string() + "' " + what);
     }
-    if (::access(probe.c_str(), W_OK | X_OK) != 0) {
+    // access(2) says yes to root everywhere but on read-only mounts, and procfs or sysfs refuse creation
+    // anyway: create and remove a probe folder where --out's first new folder would go. Nothing stays behind.
+    const fs::path trial = probe / (".emcv-demo-probe-" + std::to_string(::getpid()));
+    if (::mkdir(trial.c_str(), 0700) != 0) {
         const std::string reason = std::error_code(errno, std::generic_category()).message();
-        throw usage_error("--out: '" + dir.string() + "' is not writable ('" + probe.string() + "': " + reason + ")");
+        throw usage_error("--out: '" + dir.string() + "' is not writable (cannot create entries in '" +
+                          probe.string() + "': " + reason + ")");
     }
+    ::rmdir(trial.c_str());
 }
 
 }  // namespace emcv::demo::app

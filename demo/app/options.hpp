@@ -44,8 +44,9 @@ inline constexpr int max_frames = 100'000;
 /// range. Touches nothing outside memory.
 options parse_options(const std::vector<std::string>& args);
 
-/// Checks that `dir` is a directory or can be created as one and is writable, without creating anything
-/// (the nearest existing ancestor must be a writable directory). Throws usage_error("--out: ...").
+/// Checks that `dir` is a directory or can be created as one and is writable, leaving nothing behind: the
+/// nearest existing ancestor must be a directory in which a probe folder can be created (and is removed).
+/// Throws usage_error("--out: ...").
 void check_output_directory(const std::filesystem::path& dir);
 
 /// The --help text.

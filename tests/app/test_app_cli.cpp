@@ -83,7 +83,10 @@ TEST_CASE("unknown and malformed flags: one line, exit 2, nothing written", "[ap
     const fs::path out = scratch_dir("flags") / "out";
     const std::string scene = "--scene '" + data_dir + "/tiny.json' ";
     check_rejected(scene + "--bogus", 2, "--bogus", out);
-    check_rejected(scene + "--frames", 2, "--frames: missing value", out);
+    check_rejected(scene + "--frames --size 16x16", 2, "--frames: expected an integer", out);
+    const emcv_test::command_result last = run_demo(scene + "--frames");
+    CHECK(last.exit_code == 2);
+    CHECK(last.err == "emcv-demo: --frames: missing value\n");
     check_rejected(scene + "--frames abc", 2, "--frames", out);
     check_rejected(scene + "--frames 0", 2, "--frames", out);
     check_rejected(scene + "--frames -3", 2, "--frames", out);
@@ -234,13 +237,26 @@ TEST_CASE("a small headless run writes frames and complete metrics files", "[app
     }
 }
 
-TEST_CASE("--window runs a few frames under Xvfb", "[app][cli][gl][window]") {
+TEST_CASE("--window runs a few frames under Xvfb and its keys act", "[app][cli][gl][window]") {
     if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
         SKIP("xvfb-run is missing (Debian package xvfb; scripts/install-deps.sh installs it)");
+    // Keys pressed one per frame from frame 1 (EMCV_DEMO_KEYS): next method, heatmap, light 1, heatmap again.
     const emcv_test::command_result r = emcv_test::run_command(
-        "xvfb-run -a -s '-screen 0 320x240x24' '" + std::string(EMCV_DEMO_EXE) + "' --window --scene '" + data_dir +
-        "/tiny.json' --size 64x64 --frames 4 --method burley-4,diffuse");
+        "EMCV_DEMO_KEYS=M,H,1,H xvfb-run -a -s '-screen 0 320x240x24' '" + std::string(EMCV_DEMO_EXE) +
+        "' --window --scene '" + data_dir + "/tiny.json' --size 64x64 --frames 6 --method burley-4,diffuse");
     INFO(r.err << r.out);
-    REQUIRE(r.exit_code == 0);
-    CHECK(r.out.find("window: 4 frames") != std::string::npos);
+    REQUIRE(r.exit_code == 0);  // includes: no GL error reported by the debug messenger
+    CHECK(r.out.find("frame 1: method diffuse\n") != std::string::npos);
+    CHECK(r.out.find("frame 2: heatmap on\n") != std::string::npos);
+    CHECK(r.out.find("frame 3: light key off\n") != std::string::npos);
+    CHECK(r.out.find("frame 4: heatmap off\n") != std::string::npos);
+    CHECK(r.out.find("window: 6 frames") != std::string::npos);
+}
+
+TEST_CASE("--window with a bad scripted key: one line, non-zero exit", "[app][cli][window]") {
+    const emcv_test::command_result r =
+        run_demo("--window --scene '" + data_dir + "/tiny.json' --size 16x16 --frames 2", "EMCV_DEMO_KEYS=X");
+    CHECK(r.exit_code != 0);
+    CHECK(count_lines(r.err) <= 2);  // the key help line, then the error (or no display at all)
+    CHECK(r.err.find("emcv-demo: ") != std::string::npos);
 }
