@@ -68,14 +68,17 @@ int main(int argc, char** argv) {
         }
     }
     if (names.empty()) names = builtin_scene_names();
+    // Every scene is loaded before anything is printed: a bad one leaves no partial table.
+    std::vector<scene> scenes;
+    try {
+        for (const auto& n : names) scenes.push_back(load_scene_argument(n));
+    } catch (const scene_error& e) {
+        std::cerr << "emcv-scene-info: " << e.what() << "\n";
+        return 2;
+    }
     std::printf("| scene | frames | objects | SSS objects | lights | shadow maps | animated lights | camera moves | "
                 "triangles | SSS radius at %dx%d (px, 99.7%%) |\n|---|---|---|---|---|---|---|---|---|---|\n",
                 width, height);
-    try {
-        for (const auto& n : names) print_row(load_scene_argument(n), width, height);
-    } catch (const scene_error& e) {
-        std::cerr << "emcv-scene-info: " << e.what() << "\n";
-        return 1;
-    }
+    for (const scene& s : scenes) print_row(s, width, height);
     return 0;
 }
