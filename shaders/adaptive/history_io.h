@@ -49,6 +49,14 @@ void emcv_adaptive_store(ivec2 p, EmcvAdaptiveState s) {
 #endif
 }
 
+/// Stores texels as they were read (a kept history: no second rounding).
+void emcv_adaptive_store_raw(ivec2 p, vec4 a, vec4 b) {
+    imageStore(history_a, p, a);
+#if defined(EMCV_ADAPTIVE_CV)
+    imageStore(history_b, p, b);
+#endif
+}
+
 /// The method's sample count from its state.
 int emcv_adaptive_count(EmcvAdaptiveState s) {
 #if defined(EMCV_ADAPTIVE_CV)

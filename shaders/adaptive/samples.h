@@ -19,23 +19,27 @@ layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_PREV_DEPTH)) uniform sampler2D prev
 layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_PREV_NORMAL)) uniform sampler2D prev_normal;
 layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_PREV_MATERIAL)) uniform usampler2D prev_material;
 
-/// Last frame's state for pixel p, or a fresh one (disoccluded, off-screen, first frame, poisoned).
-EmcvAdaptiveState emcv_adaptive_reproject(ivec2 p, uint material) {
-    EmcvAdaptiveState s = emcv_adaptive_init();
+/// Last frame's raw history texels for pixel p, or false (disoccluded, off-screen, first frame, poisoned).
+/// The texels are copied as stored, not decoded and encoded again: a second binary16 store per frame would
+/// round twice (llvmpipe's float -> half store truncates; measured 2 ulps of drift against one rounding).
+bool emcv_adaptive_reproject(ivec2 p, uint material, out vec4 a, out vec4 b) {
+    a = vec4(0.0f);
+    b = vec4(0.0f);
     // Motion is current - previous in pixels; the previous position of p's centre, point-sampled.
     vec2 previous = vec2(p) + 0.5f - texelFetch(gbuffer_motion, p, 0).xy;
     ivec2 q = ivec2(floor(previous));
-    if (!emcv_render_on_screen(q)) return s;
+    if (!emcv_render_on_screen(q)) return false;
     float z = emcv_render_depth(p);
     vec3 world = emcv_render_world_position(p, z);
     float expected_prev_depth = (frame.prev_view_proj * vec4(world, 1.0f)).w;  // clip w = view depth
     bool same_surface = emcv_history_reusable(material, texelFetch(prev_material, q, 0).x, expected_prev_depth,
                                               texelFetch(prev_depth, q, 0).x, texelFetch(gbuffer_normal, p, 0).xyz,
                                               texelFetch(prev_normal, q, 0).xyz);
-    if (!same_surface) return s;
+    if (!same_surface) return false;
+    a = texelFetch(history_prev_a, q, 0);
+    b = texelFetch(history_prev_b, q, 0);
     EmcvAdaptiveState kept;
-    if (emcv_adaptive_decode(texelFetch(history_prev_a, q, 0), texelFetch(history_prev_b, q, 0), kept)) s = kept;
-    return s;
+    return emcv_adaptive_decode(a, b, kept);
 }
 
 void main() {
@@ -49,8 +53,14 @@ void main() {
         imageStore(samples_image, p, uvec4(0u));
         return;
     }
-    EmcvAdaptiveState s = emcv_adaptive_reproject(p, code);
-    emcv_adaptive_store(p, s);
+    vec4 a, b;
+    EmcvAdaptiveState s = emcv_adaptive_init();
+    if (emcv_adaptive_reproject(p, code, a, b)) {
+        emcv_adaptive_decode(a, b, s);
+        emcv_adaptive_store_raw(p, a, b);
+    } else {
+        emcv_adaptive_store(p, s);
+    }
     imageStore(samples_image, p, uvec4(uint(emcv_adaptive_count(s))));
 }
 

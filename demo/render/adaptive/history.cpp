@@ -109,7 +109,8 @@ void history::reset() {
 }
 
 std::vector<texel> history::read() const {
-    const std::size_t cur = static_cast<std::size_t>(current_);
+    // end_frame swapped: the newest history is the one the next frame reprojects from.
+    const std::size_t cur = 1 - static_cast<std::size_t>(current_);
     const std::size_t count = std::size_t(width_) * std::size_t(height_);
     std::vector<glm::vec4> a(count);
     glGetTextureImage(a_[cur].id(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(count * sizeof(glm::vec4)), a.data());

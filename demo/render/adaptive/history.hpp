@@ -53,9 +53,9 @@ public:
 
     GLuint samples_texture() const noexcept { return samples_.id(); }
 
-    /// This frame's history after the update pass (read back; tests and heatmaps).
+    /// The newest history (after the last end_frame: what the next frame reprojects from), read back.
     std::vector<texel> read() const;
-    /// Overwrites the history the next frame reprojects from (tests: a poisoned state).
+    /// Overwrites that history (tests: a poisoned state).
     void write_previous(const std::vector<texel>& texels);
     /// cv: alpha = C_fG / C_GG per pixel (port's guarded coefficient); 0 for the other methods.
     gl::float_image alpha() const;
