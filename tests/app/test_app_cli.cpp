@@ -140,6 +140,9 @@ TEST_CASE("no OpenGL platform: one line, exit 1, nothing written", "[app][cli]")
     const fs::path out = scratch_dir("no-gl") / "out";
     check_rejected("--scene '" + data_dir + "/tiny.json' --frames 1 --size 16x16", 1, "no OpenGL context", out,
                    "EMCV_GL_PLATFORMS=none");
+    // A platform that fails with a reason: the context's multi-line report is joined into the one line.
+    check_rejected("--scene '" + data_dir + "/tiny.json' --frames 1 --size 16x16", 1, "window: glfwInit failed", out,
+                   "env -u DISPLAY -u WAYLAND_DISPLAY EMCV_GL_PLATFORMS=window");
 }
 
 TEST_CASE("--list-scenes lists every built-in scene file with a description", "[app][cli]") {
