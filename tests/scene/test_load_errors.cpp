@@ -234,7 +234,7 @@ TEST_CASE("references and files") {
     }
 }
 
-TEST_CASE("--scene takes a file or a built-in name") {
+TEST_CASE("the scene argument takes a file or a built-in name") {
     const scene_files files;
     const auto file = files.write(valid_scene());
     CHECK(load_scene_argument(file.string()).name == "scene");
