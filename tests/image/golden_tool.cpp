@@ -86,7 +86,10 @@ int run(const std::vector<std::string>& args) {
         const std::string& a = args[i];
         if (a == "--only" || a == "--out") {
             if (i + 1 >= args.size() || args[i + 1].empty()) throw usage_error(a + ": missing value");
-            (a == "--only" ? only : out) = args[++i];
+            if (a == "--only")
+                only = args[++i];
+            else
+                out = args[++i];
         } else if (!a.empty() && a[0] == '-') {
             throw usage_error("unknown option '" + a + "'");
         } else {
