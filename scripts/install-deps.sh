@@ -16,6 +16,7 @@ packages=(
   glslang-tools                            # offline GLSL validation in the tests
   xvfb xauth                               # xvfb-run: the emcv-demo --window test
   python3 python3-matplotlib python3-numpy # plots in docs/
+  python3-jsonschema                       # tests/scene: the scene schema against the built-in scenes
 )
 
 missing=()
