@@ -7,6 +7,7 @@
 #ifndef EMCV_ADAPTIVE_SAMPLES_H
 #define EMCV_ADAPTIVE_SAMPLES_H
 
+#include "emcv/port/sss.h"
 #include "adaptive/history_io.h"
 #include "render/tiles.h"
 
@@ -61,7 +62,14 @@ void main() {
     } else {
         emcv_adaptive_store(p, s);
     }
-    imageStore(samples_image, p, uvec4(uint(emcv_adaptive_count(s))));
+    int n = emcv_adaptive_count(s);
+#if defined(EMCV_ADAPTIVE_CV) || defined(EMCV_ADAPTIVE_NOTEX)
+    vec3 d = emcv_sss_shape_distance(materials[code - 1u].mean_free_path.xyz, texelFetch(gbuffer_albedo, p, 0).xyz);
+    float pixels_per_mm = emcv_sss_pixels_per_mm(frame.projection.x, frame.viewport.x, emcv_render_depth(p),
+                                                 frame.camera_position.w);
+    if (emcv_history_sub_pixel(emcv_sss_widest(d), pixels_per_mm)) n = 0;
+#endif
+    imageStore(samples_image, p, uvec4(uint(n)));
 }
 
 #endif  // #ifndef EMCV_ADAPTIVE_SAMPLES_H

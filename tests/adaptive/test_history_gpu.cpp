@@ -292,6 +292,7 @@ TEST_CASE("disocclusion and off-screen motion restart the history; the rest keep
     // Material code 2 must scatter too (else the pass skips the pixel): give the table a second SSS entry.
     emcv::demo::gpu::material_block m[2]{};
     m[0].albedo = m[1].albedo = glm::vec4(1, 1, 1, 1);
+    m[0].mean_free_path = m[1].mean_free_path = glm::vec4(1, 1, 1, 0);  // kernels of many pixels: not sub-pixel
     hx.materials = emcv::gl::buffer::create();
     glNamedBufferStorage(hx.materials.id(), sizeof m, m, 0);
     hx.upload_geometry();

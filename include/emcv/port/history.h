@@ -91,6 +91,18 @@ EMCV_FN bool emcv_history_reusable(uint material, uint prev_material, float expe
     return dot(normal, prev_normal) >= 0.9f;
 }
 
+/// r with F(r) = 0.997 for a Burley profile of shape distance d is 16.6 d (the radius demo/scene/footprint.hpp
+/// reports: `far` keeps it under a pixel).
+#define EMCV_HISTORY_FOOTPRINT_RADIUS_PER_D 16.6f
+
+/// A sub-pixel kernel: 99.7% of the widest channel's profile within one pixel of the centre. Its scattered value
+/// is the pixel's own diffuse up to the profile's tail, so the control-variate methods take 0 samples there
+/// whatever the history says (the residual variance is not exactly 0 there: the tail's samples land on the
+/// neighbours, measured on `far`; docs/renderer.md).
+EMCV_FN bool emcv_history_sub_pixel(float widest_d_mm, float pixels_per_mm) {
+    return EMCV_HISTORY_FOOTPRINT_RADIUS_PER_D * widest_d_mm * pixels_per_mm < 1.0f;
+}
+
 /// spvg: N = clamp(var / 1e-4, 8, 64); n_max until the history has two frames.
 EMCV_FN int emcv_history_count_spvg(EMCV_IN(EmcvMovingStats) s) {
     if (s.count < 2u) return EMCV_HISTORY_N_MAX;
