@@ -240,6 +240,19 @@ TEST_CASE("a small headless run writes frames and complete metrics files", "[app
     }
 }
 
+TEST_CASE("the progress bar is drawn when stderr is a terminal", "[app][cli][gl]") {
+    if (std::system("command -v script >/dev/null 2>&1") != 0) SKIP("script(1) is missing (Debian package bsdutils)");
+    // script(1) gives the command a pseudo-terminal; the headless run above (pipes) showed no bar.
+    const emcv_test::command_result r = emcv_test::run_command(
+        "script -qec \"'" + std::string(EMCV_DEMO_EXE) + "' --scene '" + data_dir +
+        "/tiny.json' --size 16x16 --frames 3 --method diffuse\" /dev/null");
+    if (no_display(r) || r.out.find("(no display)") != std::string::npos) SKIP("no OpenGL display: " << r.out);
+    INFO(r.out << r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.out.find("3/3 frames") != std::string::npos);
+    CHECK(r.out.find("frames/s") != std::string::npos);
+}
+
 TEST_CASE("--window runs a few frames under Xvfb and its keys act", "[app][cli][gl][window]") {
     if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
         SKIP("xvfb-run is missing (Debian package xvfb; scripts/install-deps.sh installs it)");
