@@ -98,6 +98,8 @@ TEST_CASE("unknown and malformed flags: one line, exit 2, nothing written", "[ap
     check_rejected(scene + "--method separable-12", 2, "'separable-12'", out);
     check_rejected(scene + "--method diffuse,,reference", 2, "--method", out);
     check_rejected(scene + "--exr=yes", 2, "--exr: takes no value", out);
+    check_rejected(scene + "--method diffuse --method reference", 2, "--method: given twice", out);
+    check_rejected(scene + "--window", 2, "--window: cannot be combined with --out", out);
 }
 
 TEST_CASE("zero, malformed and absurd sizes: one line, exit 2, nothing written", "[app][cli]") {
