@@ -62,3 +62,35 @@ TEST_CASE("every method renders every scene without GL errors, NaN or Inf") {
         }
     }
 }
+
+TEST_CASE("the reference is reused while its inputs hold and re-rendered when they change") {
+    // Frame 0 renders; frame 1 (same camera, same lights) shows it again without an SSS pass; a light switched
+    // off (renderer::set_light_scale) changes the inputs, so frame 2 renders again; frame 3 reuses that.
+    emcv::gl::context ctx = emcv::test::context_or_skip();
+    emcv::gl::debug_messenger messenger;
+    const scene s = emcv::test::sphere_on_floor();
+    render_options options;
+    options.width = 48;
+    options.height = 32;
+    renderer r(s, make_reference(256), options);
+    const auto has_sss_pass = [](const frame_stats& st) {
+        return std::any_of(st.passes.begin(), st.passes.end(), [](const pass_time& p) { return p.name == "sss-burley"; });
+    };
+    const frame_stats& f0 = r.render(0);
+    CHECK_FALSE(f0.reference_reused);
+    CHECK(has_sss_pass(f0));
+    const emcv::gl::float_image image0 = r.linear();
+    const frame_stats& f1 = r.render(1);
+    CHECK(f1.reference_reused);
+    CHECK_FALSE(has_sss_pass(f1));
+    CHECK(f1.sss_ms == 0.0);
+    CHECK(f1.mean_spp == 256.0);  // the samples that made the image shown
+    CHECK(r.linear().pixels == image0.pixels);
+    r.set_light_scale(1, 0.0f);
+    const frame_stats& f2 = r.render(2);
+    CHECK_FALSE(f2.reference_reused);
+    CHECK(has_sss_pass(f2));
+    CHECK(r.linear().pixels != image0.pixels);
+    CHECK(r.render(3).reference_reused);
+    CHECK(messenger.error_count() == 0);
+}
