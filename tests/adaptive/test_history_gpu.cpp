@@ -109,7 +109,8 @@ struct harness {
         glNamedBufferStorage(materials.id(), sizeof m, &m, 0);
         const std::uint32_t zeros[4] = {0, 0, 0, 0};
         glNamedBufferStorage(stats.id(), sizeof zeros, zeros, 0);
-        const std::uint32_t tile_list[6] = {2, 1, 1, 0, 0u | (0u << 16), 1u | (0u << 16)};
+        // Indirect dispatch (2, 1, 1), tile count 2 (the header's w), then the two tiles (x | y << 16).
+        const std::uint32_t tile_list[6] = {2, 1, 1, 2, 0u | (0u << 16), 1u | (0u << 16)};
         glNamedBufferStorage(tiles.id(), sizeof tile_list, tile_list, 0);
         const std::vector<glm::vec4> ones(pixels, glm::vec4(1.0f));
         glTextureSubImage2D(albedo.id(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, ones.data());
