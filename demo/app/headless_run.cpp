@@ -97,8 +97,12 @@ run_result run_headless(const scene& s, const options& o, int frames) {
         const pixel_mask sss = mask_of(ref.r.sss_mask());
         std::optional<gl::float_image>& ref_previous = ref.previous_display;
 
+        // The other methods start one further along each frame, so that no method always renders right
+        // after the reference's readback: position in the frame must not show up as a difference in frame_ms
+        // between methods (docs/demo.md, no-sss against diffuse). Rows keep the run order.
         std::vector<metrics_row> frame_rows(runs.size());
-        for (std::size_t i = 0; i < runs.size(); ++i) {
+        for (std::size_t k = 0; k < runs.size(); ++k) {
+            const std::size_t i = (k + static_cast<std::size_t>(frame)) % runs.size();
             method_run& run = runs[i];
             const bool is_reference = i == reference_index;
             const frame_stats stats = is_reference ? ref_stats : run.r.render(frame);
