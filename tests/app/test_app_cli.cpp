@@ -258,17 +258,19 @@ TEST_CASE("the progress bar is drawn when stderr is a terminal", "[app][cli][gl]
 TEST_CASE("--window runs a few frames under Xvfb and its keys act", "[app][cli][gl][window]") {
     if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
         SKIP("xvfb-run is missing (Debian package xvfb; scripts/install-deps.sh installs it)");
-    // Keys pressed one per frame from frame 1 (EMCV_DEMO_KEYS): next method, heatmap, light 1, heatmap again.
+    // Keys pressed one per frame from frame 1 (EMCV_DEMO_KEYS): next method, heatmap, light 1, heatmap again,
+    // and back to the first method (scattering -> diffuse -> scattering once corrupted the renderer's heap).
     const emcv_test::command_result r = emcv_test::run_command(
-        "EMCV_DEMO_KEYS=M,H,1,H xvfb-run -a -s '-screen 0 320x240x24' '" + std::string(EMCV_DEMO_EXE) +
-        "' --window --scene '" + data_dir + "/tiny.json' --size 64x64 --frames 6 --method burley-4,diffuse");
+        "EMCV_DEMO_KEYS=M,H,1,H,N xvfb-run -a -s '-screen 0 320x240x24' '" + std::string(EMCV_DEMO_EXE) +
+        "' --window --scene '" + data_dir + "/tiny.json' --size 64x64 --frames 7 --method burley-4,diffuse");
     INFO(r.err << r.out);
     REQUIRE(r.exit_code == 0);  // includes: no GL error reported by the debug messenger
     CHECK(r.out.find("frame 1: method diffuse\n") != std::string::npos);
     CHECK(r.out.find("frame 2: heatmap on\n") != std::string::npos);
     CHECK(r.out.find("frame 3: light key off\n") != std::string::npos);
     CHECK(r.out.find("frame 4: heatmap off\n") != std::string::npos);
-    CHECK(r.out.find("window: 6 frames") != std::string::npos);
+    CHECK(r.out.find("frame 5: method burley-4\n") != std::string::npos);
+    CHECK(r.out.find("window: 7 frames") != std::string::npos);
 }
 
 TEST_CASE("--window with a bad scripted key: one line, non-zero exit", "[app][cli][window]") {
