@@ -111,7 +111,7 @@ struct renderer::impl {
     int width;
     int height;
 
-    gl::program gbuffer_program, shadow_program, lighting_program, tiles_program, burley_program,
+    gl::program gbuffer_program, shadow_program, lighting_program, tiles_program, dispatch_program, burley_program,
         separable_program, composite_program;
     gl::preprocess_options shader_options;  // kept for the adaptive passes, built on a method switch
     fs::path shader_root;
@@ -242,6 +242,7 @@ void renderer::impl::build_programs() {
     shadow_program = gl::program::graphics(dir / "shadow.vert.glsl", dir / "shadow.frag.glsl", pre);
     lighting_program = gl::program::compute(dir / "lighting.comp.glsl", pre);
     tiles_program = gl::program::compute(dir / "sss_tiles.comp.glsl", pre);
+    dispatch_program = gl::program::compute(dir / "sss_dispatch.comp.glsl", pre);
     burley_program = gl::program::compute(dir / "sss_burley.comp.glsl", pre);
     separable_program = gl::program::compute(dir / "sss_separable.comp.glsl", pre);
     composite_program = gl::program::compute(dir / "composite.comp.glsl", pre);
@@ -566,13 +567,16 @@ const frame_stats& renderer::impl::render(int frame) {
     }
     if (sss_pass && !reuse_reference) {
         begin_pass(slot_tiles);
-        const GLuint header[4] = {0u, 1u, 1u, 0u};
+        const GLuint header[4] = {0u, 0u, 1u, 0u};  // no tiles yet: the dispatch pass writes x, y from w
         glNamedBufferSubData(tiles_ssbo.id(), 0, sizeof header, header);
         glClearNamedBufferData(stats_ssbo.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
         glClearTexImage(counts.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
         counts_dirty = true;
         tiles_program.use();
         glDispatchCompute(groups_x, groups_y, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        dispatch_program.use();
+        glDispatchCompute(1, 1, 1);
         glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
         end_pass(slot_tiles);
 

@@ -6,6 +6,9 @@
 #define EMCV_RENDER_BINDINGS_H
 
 #define EMCV_RENDER_TILE_SIZE 8  // SSS tiles and compute workgroups are 8x8 pixels
+// SSS tile dispatches are 2-D, EMCV_RENDER_TILE_ROW workgroups per row: one row of n tiles would exceed GL's
+// guaranteed 65535 workgroups per dimension from 2048x2048 pixels on.
+#define EMCV_RENDER_TILE_ROW 1024
 
 // Buffers
 #define EMCV_RENDER_FRAME 0       // uniform block: camera, viewport, frame constants (frame.h)

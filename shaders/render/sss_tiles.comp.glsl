@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // SSS tile classification (sss.md 2.2): one workgroup per 8x8 tile of the screen; a tile holding a scattering
-// pixel is appended to the tile list, whose first element is the indirect dispatch argument of the SSS
-// passes (so they run over SSS tiles only). Also counts the SSS pixels (frame_stats.sss_pixels).
+// pixel is appended to the tile list (its count in the list's header; sss_dispatch.comp.glsl then writes the
+// indirect dispatch arguments of the SSS passes, which so run over SSS tiles only). Also counts the SSS
+// pixels (frame_stats.sss_pixels).
 #version 450 core
 
 #include "render/gbuffer_read.h"
@@ -20,7 +21,7 @@ void main() {
     }
     barrier();
     if (gl_LocalInvocationIndex == 0u && tile_sss_pixels > 0u) {
-        uint slot = atomicAdd(tile_list.dispatch.x, 1u);
+        uint slot = atomicAdd(tile_list.dispatch.w, 1u);
         tile_list.tiles[slot] = gl_WorkGroupID.x | (gl_WorkGroupID.y << 16u);
         atomicAdd(stats.sss_pixels, tile_sss_pixels);
     }
