@@ -4,6 +4,11 @@
 #include <catch2/catch_test_macros.hpp>
 
 #include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
 #include <vector>
 
 #include "../gpu/gl_test_support.hpp"
@@ -92,5 +97,47 @@ TEST_CASE("the reference is reused while its inputs hold and re-rendered when th
     CHECK(has_sss_pass(f2));
     CHECK(r.linear().pixels != image0.pixels);
     CHECK(r.render(3).reference_reused);
+    CHECK(messenger.error_count() == 0);
+}
+
+TEST_CASE("SSS tiles dispatched in many rows render the same image as in one row") {
+    // Large frames dispatch the SSS tiles in rows of EMCV_RENDER_TILE_ROW (1024) workgroups; the renderer may
+    // only be run at small sizes here, so a copy of shaders/ with rows of 3 tiles (48 tiles: 16 rows at 64x48)
+    // must give the bit-identical image of the default (one row).
+    emcv::gl::context ctx = emcv::test::context_or_skip();
+    emcv::gl::debug_messenger messenger;
+    namespace fs = std::filesystem;
+    const fs::path copy = fs::temp_directory_path() / "emcv-test-render-tile-rows";
+    fs::remove_all(copy);
+    const char* shader_dir = std::getenv("EMCV_SHADER_DIR");  // as the renderer reads it (mutation checks)
+    const fs::path source = shader_dir != nullptr && *shader_dir != '\0' ? fs::path(shader_dir)
+                                                                          : fs::path(EMCV_SOURCE_DIR) / "shaders";
+    fs::copy(source, copy, fs::copy_options::recursive);
+    const fs::path bindings = copy / "render" / "bindings.h";
+    std::string text;
+    {
+        std::ifstream in(bindings);
+        text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    const std::string row = "#define EMCV_RENDER_TILE_ROW 1024";
+    REQUIRE(text.find(row) != std::string::npos);
+    text.replace(text.find(row), row.size(), "#define EMCV_RENDER_TILE_ROW 3");
+    std::ofstream(bindings) << text;
+
+    const scene s = emcv::test::lit_sss_plane(1.0f);
+    for (const method& m : {method{method::kind::burley, 8}, method{method::kind::separable, 11}}) {
+        render_options options;
+        options.width = 64;
+        options.height = 48;
+        renderer one_row(s, m, options);
+        one_row.render(0);
+        options.shader_dir = copy;
+        renderer many_rows(s, m, options);
+        const frame_stats& stats = many_rows.render(0);
+        INFO(m.name());
+        CHECK(stats.sss_pixels == 64u * 48u);
+        CHECK(many_rows.linear().pixels == one_row.linear().pixels);
+    }
+    fs::remove_all(copy);
     CHECK(messenger.error_count() == 0);
 }
