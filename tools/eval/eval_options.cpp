@@ -32,7 +32,8 @@ std::string usage_text() {
     return "usage: emcv-eval --method M[,M...] [--scene FILE|NAME] [--size WxH] [--frames N] [--sss-scale K]\n"
            "                 [--seed S] [--heatmaps F[,F...] --heatmap-dir DIR]\n"
            "Renders the methods side by side, frame by frame (no reference), and prints one CSV row per frame\n"
-           "and method: scene,width,height,sss_scale,method,frame,sss_ms,frame_ms,mean_spp,max_spp,sss_pixels.\n"
+           "and method: scene,width,height,sss_scale,method,frame,sss_ms,frame_ms,mean_spp,max_spp,sss_pixels,lights\n"
+           "(lights: name=intensity;... of the scene's light curves at the frame).\n"
            "--sss-scale multiplies every scattering material's mean free path (the radius on screen).\n"
            "--heatmaps writes <method>.f<F>.samples.csv (and .alpha.csv for cv) under DIR, top row first.\n";
 }

@@ -57,15 +57,18 @@ int run(const eval::options& o) {
     std::vector<demo::renderer> renderers;
     for (const demo::method& m : o.methods) renderers.emplace_back(s, m, ro);
 
-    std::printf("scene,width,height,sss_scale,method,frame,sss_ms,frame_ms,mean_spp,max_spp,sss_pixels\n");
+    std::printf("scene,width,height,sss_scale,method,frame,sss_ms,frame_ms,mean_spp,max_spp,sss_pixels,lights\n");
     for (int frame = 0; frame < frames; ++frame) {
         const bool dump = std::find(o.heatmap_frames.begin(), o.heatmap_frames.end(), frame) != o.heatmap_frames.end();
+        std::string lights;  // "name=intensity;...": the scene's curves at this frame (scene::curve::at)
+        for (const demo::light& l : s.lights)
+            lights += (lights.empty() ? "" : ";") + l.name + "=" + std::to_string(l.intensity.at(frame));
         for (std::size_t i = 0; i < renderers.size(); ++i) {
             const demo::frame_stats& st = renderers[i].render(frame);
             const std::string name = o.methods[i].name();
-            std::printf("%s,%d,%d,%g,%s,%d,%.4f,%.4f,%.3f,%d,%zu\n", s.name.c_str(), o.width, o.height,
+            std::printf("%s,%d,%d,%g,%s,%d,%.4f,%.4f,%.3f,%d,%zu,%s\n", s.name.c_str(), o.width, o.height,
                         static_cast<double>(o.sss_scale), name.c_str(), frame, st.sss_ms, st.frame_ms, st.mean_spp,
-                        st.max_spp, st.sss_pixels);
+                        st.max_spp, st.sss_pixels, lights.c_str());
             if (dump) {
                 const std::string stem = name + ".f" + std::to_string(frame);
                 write_csv(o.heatmap_dir / (stem + ".samples.csv"), renderers[i].sample_counts());
