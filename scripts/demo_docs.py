@@ -149,15 +149,18 @@ def main():
             sys.exit(f"demo_docs.py: --only: unknown part '{p}' (expected {', '.join(PARTS)})")
     if not (os.path.isfile(a.demo) and os.access(a.demo, os.X_OK)):
         sys.exit(f"demo_docs.py: no executable emcv-demo at {a.demo} (build the emcv-demo target first)")
-    with open(DOC) as f:
-        doc = f.read()
     images = []
+    bodies = {}
     with tempfile.TemporaryDirectory(prefix="emcv-demo-docs-") as tmp:
         for p in parts:
             if p == "images":
-                body, images = part_images(a.demo, tmp)
+                bodies[p], images = part_images(a.demo, tmp)
             else:
-                body = {"passes": part_passes, "summary": part_summary, "no-sss": part_no_sss}[p](a.demo, tmp)
+                bodies[p] = {"passes": part_passes, "summary": part_summary, "no-sss": part_no_sss}[p](a.demo, tmp)
+        # Read the page only now: the runs take minutes and other sections may have been edited meanwhile.
+        with open(DOC) as f:
+            doc = f.read()
+        for p, body in bodies.items():
             doc = replace_block(doc, p, body)
         os.makedirs(IMAGES, exist_ok=True)
         for name, _, png, _ in images:
