@@ -17,11 +17,14 @@ layout(r32ui, EMCV_LAYOUT_BINDING(EMCV_RENDER_IMG_COUNT)) writeonly uniform uima
 // Adaptive methods (frame.sss.y = 1): N per pixel from the adaptive-samples pass (shaders/adaptive).
 layout(r32ui, EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_IMG_SAMPLES)) readonly uniform uimage2D adaptive_samples;
 
-void main() {
-    ivec2 p = emcv_render_tile_pixel();
-    if (!emcv_render_on_screen(p)) return;
+shared uint tile_sample_sum;
+shared uint tile_sample_max;
+
+/// Scatters pixel p; returns the samples it took (0 off screen and for non-scattering pixels).
+uint scatter(ivec2 p) {
+    if (!emcv_render_on_screen(p)) return 0u;
     uint code = emcv_render_material_code(p);
-    if (!emcv_render_scatters(code)) return;
+    if (!emcv_render_scatters(code)) return 0u;
 
     vec3 d = emcv_sss_shape_distance(materials[code - 1u].mean_free_path.xyz, texelFetch(gbuffer_albedo, p, 0).xyz);
     float d_sample = emcv_sss_widest(d);
@@ -51,6 +54,22 @@ void main() {
     vec3 scattered = mix(centre, sum_wl / max(sum_w, vec3(1e-30f)), greaterThan(sum_w, vec3(0.0f)));
     imageStore(out_scattered, p, vec4(scattered, 1.0f));
     imageStore(out_count, p, uvec4(n));
-    atomicAdd(stats.sample_sum, n);
-    atomicMax(stats.sample_max, n);
+    return n;
+}
+
+void main() {
+    if (gl_LocalInvocationIndex == 0u) {
+        tile_sample_sum = 0u;
+        tile_sample_max = 0u;
+    }
+    barrier();
+    uint n = scatter(emcv_render_tile_pixel());
+    // Sample statistics reduced per tile in shared memory, then one global atomic per tile (not per pixel).
+    atomicAdd(tile_sample_sum, n);
+    atomicMax(tile_sample_max, n);
+    barrier();
+    if (gl_LocalInvocationIndex == 0u) {
+        atomicAdd(stats.sample_sum, tile_sample_sum);
+        atomicMax(stats.sample_max, tile_sample_max);
+    }
 }
