@@ -21,7 +21,7 @@ struct frame_block {
     glm::vec4 background;       // w: exposure
     glm::vec4 ambient;          // w: tonemap
     glm::uvec4 counters;        // frame, seed, light count, flags
-    glm::ivec4 sss;             // fixed samples, unused, material count, unused
+    glm::ivec4 sss;             // fixed samples, adaptive (1: N per pixel), material count, unused
 };
 static_assert(sizeof(frame_block) == 5 * 64 + 7 * 16, "frame_block must match shaders/render/frame.h");
 

@@ -19,7 +19,7 @@ layout(std140, EMCV_LAYOUT_BINDING(EMCV_RENDER_FRAME)) uniform Frame {
     vec4 background;       // linear rgb, w: exposure
     vec4 ambient;          // linear rgb irradiance, w: tonemap (0 ACES fitted, 1 Reinhard)
     uvec4 counters;        // frame, seed, light count, flags (EMCV_RENDER_FLAG_*)
-    ivec4 sss;             // fixed samples per SSS pixel, unused, material count, unused
+    ivec4 sss;             // fixed samples per SSS pixel, adaptive (1: N per pixel from shaders/adaptive), material count, unused
 } frame;
 
 struct Light {
