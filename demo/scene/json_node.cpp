@@ -6,20 +6,11 @@
 #include <limits>
 #include <sstream>
 
+#include "duplicate_keys.hpp"
 #include "schema_keys.hpp"
 
 namespace emcv::demo {
 namespace {
-
-std::string escape_pointer_token(std::string_view key) {
-    std::string out;
-    for (char c : key) {
-        if (c == '~') out += "~0";
-        else if (c == '/') out += "~1";
-        else out += c;
-    }
-    return out;
-}
 
 std::string format_number(double x) {
     std::ostringstream s;
@@ -69,7 +60,7 @@ void json_node::check_keys(std::string_view kind) const {
         if (!known) {
             std::string allowed;
             for (const auto& k : rule.keys) allowed += (allowed.empty() ? "" : ", ") + std::string(k.name);
-            json_node(member, pointer_ + "/" + escape_pointer_token(key), *file_)
+            json_node(member, pointer_ + "/" + escape_pointer_token(std::string(key)), *file_)
                 .fail("unknown key \"" + key + "\" (allowed here: " + allowed + ")");
         }
     }
@@ -87,7 +78,7 @@ std::optional<json_node> json_node::find(std::string_view key) const {
     if (!value_->is_object()) fail("expected an object, got " + json_type_phrase(*value_));
     const auto it = value_->find(std::string(key));
     if (it == value_->end()) return std::nullopt;
-    return json_node(*it, pointer_ + "/" + escape_pointer_token(key), *file_);
+    return json_node(*it, pointer_ + "/" + escape_pointer_token(std::string(key)), *file_);
 }
 
 json_node json_node::element(std::size_t index) const {

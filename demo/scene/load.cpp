@@ -15,6 +15,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "duplicate_keys.hpp"
 #include "json_node.hpp"
 #include "mesh_file.hpp"
 #include "procedural.hpp"
@@ -361,6 +362,9 @@ scene load_scene(const std::filesystem::path& file) {
     } catch (const nlohmann::json::parse_error& e) {
         whole_file.fail(parse_error_problem(e));
     }
+    if (const auto duplicate = find_duplicate_key(text.str()))
+        json_node(json, duplicate->pointer, ctx.file)
+            .fail("duplicate key \"" + duplicate->key + "\" (JSON keeps only the last; say it once)");
     const json_node root(json, "", ctx.file);
     root.check_keys("scene");
 

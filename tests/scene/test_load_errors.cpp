@@ -244,3 +244,26 @@ TEST_CASE("the scene argument takes a file or a built-in name") {
                              Catch::Matchers::StartsWith("statik: no such scene file or built-in scene") &&
                              Catch::Matchers::ContainsSubstring("light-off")));
 }
+
+TEST_CASE("a key repeated within an object is an error, not a silent overwrite") {
+    const scene_files files;
+    auto expect = [&](const std::string& from, const std::string& to, const std::string& pointer, const std::string& key) {
+        std::string text = valid_scene().dump();  // compact, keys sorted
+        const auto at = text.find(from);
+        REQUIRE(at != std::string::npos);
+        REQUIRE(text.find(from, at + 1) == std::string::npos);
+        text.replace(at, from.size(), to);
+        const auto file = files.dir.write("scene.json", text);
+        CHECK_THROWS_MATCHES(load_scene(file), scene_error,
+                             Catch::Matchers::MessageMatches(Catch::Matchers::Equals(
+                                 file.string() + ": " + pointer + ": duplicate key \"" + key +
+                                 "\" (JSON keeps only the last; say it once)")));
+    };
+    expect("\"intensity\":4", "\"intensity\":4,\"intensity\":5", "/lights/1/intensity", "intensity");
+    expect("{\"frame\":5,\"value\":0}", "{\"frame\":5,\"frame\":6,\"value\":0}", "/lights/0/intensity/steps/0/frame", "frame");
+    expect("\"frames\":12", "\"frames\":12,\"frames\":12", "/frames", "frames");  // even with the same value
+    expect("\"frames\":12", "\"frames\":12,\"a/b\":1,\"a/b\":2", "/a~1b", "a/b");
+    // Arrays of arrays count their elements: the pointer names the right object.
+    expect("\"keys\":[{\"frame\":0,", "\"keys\":[{\"frame\":0,\"frame\":0,", "/camera/keys/0/frame", "frame");
+    expect("{\"frame\":10,", "{\"frame\":10,\"frame\":10,", "/camera/keys/1/frame", "frame");
+}
