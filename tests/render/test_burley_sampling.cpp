@@ -80,7 +80,7 @@ double critical_value() {
 
 }  // namespace
 
-TEST_CASE("GPU Burley radii follow the port's CDF (chi-square, 64 bins, 2^18 samples)") {
+TEST_CASE("GPU Burley radii follow the port's CDF (chi-square with 64 bins over 2^18 samples)") {
     emcv::gl::context ctx = emcv::test::context_or_skip();
     emcv::gl::debug_messenger messenger;
     const double critical = critical_value();

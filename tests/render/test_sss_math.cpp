@@ -58,7 +58,7 @@ TEST_CASE("the sampled channel's weight is 1 / (2 pi) at every radius without a 
     }
 }
 
-TEST_CASE("sample offsets: length r pixelsPerMm, angle 2 pi u_theta; rotated R2 points stay in [0, 1)") {
+TEST_CASE("sample offsets have length r pixelsPerMm and angle 2 pi u_theta and rotated R2 points stay in the unit square") {
     const vec2 o = emcv_sss_offset_pixels(2.0f, 0.25f, 3.0f);
     CHECK(std::abs(o.x) < 1e-5f);
     CHECK(std::abs(o.y - 6.0f) < 1e-5f);
@@ -95,7 +95,7 @@ TEST_CASE("the Burley marginal's tail matches Monte Carlo") {
     CHECK(std::abs(emcv::demo::burley_marginal_tail(0.0, d) - 0.5) < 1e-6);
 }
 
-TEST_CASE("separable kernels: centre first, symmetric offsets, every channel sums to 1, wider channels spread") {
+TEST_CASE("separable kernels put the centre first with symmetric offsets and unit channel sums and spread wider channels more") {
     for (int taps : {11, 17, 25}) {
         const emcv::demo::separable_kernel k = emcv::demo::make_separable_kernel(glm::vec3(0.9f, 0.3f, 0.2f), taps);
         REQUIRE(k.taps.size() == std::size_t(taps));
