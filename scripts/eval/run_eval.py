@@ -4,7 +4,8 @@
 One command regenerates every figure and table of docs/results/ and the generated blocks of docs/results.md:
     /usr/bin/python3 scripts/eval/run_eval.py [--build build] [--size 128x128] [--seeds 1,2] [--quick]
 
-It needs build/bin/emcv-demo and build/bin/emcv-eval (cmake --build build --target emcv-demo emcv-eval) and
+It needs build/bin/emcv-demo, emcv-eval and emcv-golden (cmake --build build --target emcv-demo emcv-eval
+emcv-golden) and
 runs them headless (EGL; Mesa llvmpipe here, so every time is a CPU rasteriser's time: docs/results.md says
 what that means). Stages, each writing its raw CSV under docs/results/raw/ first:
   quality  emcv-demo over static, light-off, flicker, club: burley-1..64, separable-11/17/25, diffuse, and the
@@ -12,6 +13,8 @@ what that means). Stages, each writing its raw CSV under docs/results/raw/ first
   switch   emcv-eval on light-off, flicker, club: samples and SSS ms per frame, with the light curves.
   heatmap  emcv-eval on light-off: sample counts before and after the switch, cv's alpha.
   scaling  emcv-eval: SSS ms and samples against resolution and against the scattering radius (--sss-scale).
+  spread   emcv-golden: the golden cases rendered with seed 2 against the goldens (seed 1): how far an image
+           moves when every sample position moves, the bound for the tolerance another GPU needs.
 The adaptive knobs (target variance, N max) are compile-time constants of the shared port
 (include/emcv/port/history.h, EMCV_HISTORY_TARGET / EMCV_HISTORY_N_MAX) that the renderer compiles into its GLSL
 at run time: each setting is a copy of include/ with the two #defines rewritten, passed as EMCV_INCLUDE_DIR.
@@ -165,6 +168,42 @@ def save_rows(name, rows):
     w.writeheader()
     w.writerows(rows)
     write_atomically(os.path.join(RAW, name), s.getvalue())
+
+
+def stage_spread(a, tmp):
+    golden = os.path.join(a.build, "bin", "emcv-golden")
+    out = os.path.join(tmp, "seed2")
+    print("  spread: golden cases with seed 2", flush=True)
+    run([golden, "render", "--seed", "2", "--out", out], renderer_env(tmp))
+    rows = []
+    pattern = re.compile(r"^(\w+): (\d+) of (\d+) pixels over \S+ \(([\d.]+)%.*max ([\d.e+-]+) at .*RMSE ([\d.e+-]+)")
+    for name in sorted(os.listdir(out)):
+        r = subprocess.run([golden, "compare", os.path.join(out, name),
+                            os.path.join(ROOT, "tests", "image", "golden", name)], capture_output=True, text=True)
+        m = pattern.match(r.stdout.strip())
+        if not m:
+            die(f"emcv-golden compare {name}: unexpected output {r.stdout!r} {r.stderr!r}")
+        rows.append({"image": name, "verdict": m.group(1), "failing_percent": m.group(4),
+                     "max_error": m.group(5), "rmse": m.group(6)})
+    return rows
+
+
+def spread_table(rows):
+    """Per method (over scenes): the largest share of pixels over the golden tolerance and the largest RMSE."""
+    by = {}
+    for r in rows:
+        parts = r["image"].split(".")
+        kind = "samples" if ".spp." in r["image"] else "display"
+        by.setdefault((parts[1], kind), []).append(r)
+    lines = ["| method | image | worst failing pixels % (scene) | worst RMSE (x 255) | worst max difference (x 255) |",
+             "|---|---|---:|---:|---:|"]
+    for (method, kind), rs in sorted(by.items()):
+        worst = max(rs, key=lambda r: float(r["failing_percent"]))
+        scale = 65535 if kind == "samples" else 255
+        lines.append(f"| {method} | {kind} | {float(worst['failing_percent']):.2f} ({worst['image'].split('.')[0]}) | "
+                     f"{max(float(r['rmse']) for r in rs) * scale:.2f} | "
+                     f"{max(float(r['max_error']) for r in rs) * scale:.0f} |")
+    return "\n".join(lines)
 
 
 # ---------------------------------------------------------------------------------------------------- summaries
@@ -419,7 +458,7 @@ def main():
     p.add_argument("--size", default="128x128", help="quality sweep size (default 128x128)")
     p.add_argument("--seeds", default="1,2", help="seeds of the repeated quality runs (default 1,2)")
     p.add_argument("--frames", type=int, default=0, help="frames per quality run (default: the scene's length)")
-    p.add_argument("--stages", default="quality,switch,heatmap,scaling")
+    p.add_argument("--stages", default="quality,switch,heatmap,scaling,spread")
     p.add_argument("--quick", action="store_true", help="small and short: for checking the script")
     p.add_argument("--plots-only", action="store_true", help="redraw from docs/results/raw without rendering")
     a = p.parse_args()
@@ -427,9 +466,9 @@ def main():
     stages = set(a.stages.split(","))
     if a.quick:
         a.size, a.seeds, a.frames = "64x64", [1], 0
-    for exe in ("emcv-demo", "emcv-eval"):
+    for exe in ("emcv-demo", "emcv-eval", "emcv-golden"):
         if not a.plots_only and not os.access(os.path.join(a.build, "bin", exe), os.X_OK):
-            die(f"no {exe} in {a.build}/bin (cmake --build {a.build} --target emcv-demo emcv-eval)")
+            die(f"no {exe} in {a.build}/bin (cmake --build {a.build} --target emcv-demo emcv-eval emcv-golden)")
     os.makedirs(RAW, exist_ok=True)
     device_file = os.path.join(RAW, "device.txt")
     cost_size = "64x64" if a.quick else "128x128"
@@ -450,6 +489,8 @@ def main():
                 os.makedirs(heat, exist_ok=True)
                 stage_cost(a, tmp, "light-off", ADAPTIVE, cost_size, SWITCH_FRAME + 4,
                            heatmaps=([SWITCH_FRAME - 1, SWITCH_FRAME + 3], heat))
+            if "spread" in stages:
+                save_rows("golden-seed-spread.csv", stage_spread(a, tmp))
             if "scaling" in stages:
                 rows = []
                 sizes = SCALING_SIZES[:2] if a.quick else SCALING_SIZES
@@ -478,6 +519,8 @@ def main():
         plot_switch({s: [r for r in rows if r["scene"] == s] for s in ("light-off", "flicker", "club")}, device)
     if os.path.isdir(os.path.join(RAW, "heatmaps")):
         plot_heatmaps(os.path.join(RAW, "heatmaps"), [SWITCH_FRAME - 1, SWITCH_FRAME + 3], device)
+    if os.path.exists(os.path.join(RAW, "golden-seed-spread.csv")):
+        blocks["seed-spread"] = spread_table(read_csv(os.path.join(RAW, "golden-seed-spread.csv")))
     if os.path.exists(os.path.join(RAW, "scaling-resolution.csv")):
         g = plot_scaling(read_csv(os.path.join(RAW, "scaling-resolution.csv")), "scaling-resolution",
                          "pixels (log)", "static: cost against resolution", device, pixels=True)

@@ -36,14 +36,14 @@ bool adaptive(const demo::method& m) {
 
 }  // namespace
 
-golden_images render_case(const golden_case& c) {
+golden_images render_case(const golden_case& c, std::uint32_t seed) {
     const std::optional<demo::method> m = demo::parse_method(c.method);
     if (!m) throw std::runtime_error(c.stem() + ": unknown or unimplemented method '" + c.method + "'");
     const demo::scene s = demo::load_scene_argument(c.scene);
     demo::render_options options;
     options.width = c.width;
     options.height = c.height;
-    options.seed = golden_seed;
+    options.seed = seed;
     options.timing_mode = demo::timing::per_frame;
     demo::renderer r(s, *m, options);
     for (int frame = 0; frame <= c.last_frame(); ++frame) r.render(frame);

@@ -17,8 +17,8 @@ struct golden_images {
     std::optional<OIIO::ImageBuf> sample_counts;  ///< adaptive methods: one channel UINT16 holding the count
 };
 
-/// Loads the built-in scene, renders frames 0..last_frame with golden_seed and returns the last frame's
-/// images. Throws std::runtime_error naming the case (unknown scene or method, renderer errors).
-golden_images render_case(const golden_case& c);
+/// Loads the built-in scene, renders frames 0..last_frame with `seed` (the goldens: golden_seed) and returns
+/// the last frame's images. Throws std::runtime_error naming the case (unknown scene or method, renderer errors).
+golden_images render_case(const golden_case& c, std::uint32_t seed = golden_seed);
 
 }  // namespace emcv::image

@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: MIT
 // emcv-golden: renders the golden cases (tests/image/golden/cases.txt) and shows what changed.
 //   emcv-golden update [--only TEXT]          render, print per image what changed, replace the goldens
-//   emcv-golden render --out DIR [--only TEXT]   render into DIR only
+//   emcv-golden render --out DIR [--only TEXT] [--seed S]   render into DIR only (S: another seed, to
+//                                             measure how far images move when every sample position does)
 //   emcv-golden compare ACTUAL EXPECTED       one idiff-style line (display tolerance; ".spp.png": samples)
 // scripts/update-golden.sh builds and runs `update`; docs/results.md explains the tolerances.
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <iostream>
@@ -30,7 +33,7 @@ struct usage_error : std::runtime_error {
 
 const char* const usage =
     "usage: emcv-golden update [--only TEXT]\n"
-    "       emcv-golden render --out DIR [--only TEXT]\n"
+    "       emcv-golden render --out DIR [--only TEXT] [--seed S]\n"
     "       emcv-golden compare ACTUAL EXPECTED\n";
 
 bool is_samples_file(const fs::path& p) { return p.filename().string().find(".spp.") != std::string::npos; }
@@ -47,7 +50,7 @@ std::string change(const OIIO::ImageBuf& rendered, const fs::path& golden, const
     }
 }
 
-int render_all(const fs::path& out, const std::string& only, bool show_changes) {
+int render_all(const fs::path& out, const std::string& only, bool show_changes, std::uint32_t seed) {
     std::vector<golden_case> cases;
     for (const golden_case& c : read_cases(golden_dir / "cases.txt"))
         if (only.empty() || c.stem().find(only) != std::string::npos) cases.push_back(c);
@@ -55,7 +58,7 @@ int render_all(const fs::path& out, const std::string& only, bool show_changes) 
     emcv::gl::context context;
     emcv::gl::debug_messenger messenger;
     for (const golden_case& c : cases) {
-        const golden_images images = render_case(c);
+        const golden_images images = render_case(c, seed);
         const auto emit = [&](const OIIO::ImageBuf& img, const std::string& file, const tolerance& t) {
             if (show_changes) std::cout << file << ": " << change(img, out / file, t) << '\n';
             write(img, out / file);
@@ -81,10 +84,18 @@ int run(const std::vector<std::string>& args) {
     const std::string& command = args[0];
     std::string only;
     fs::path out;
+    std::uint32_t seed = golden_seed;
     std::vector<std::string> positional;
     for (std::size_t i = 1; i < args.size(); ++i) {
         const std::string& a = args[i];
-        if (a == "--only" || a == "--out") {
+        if (a == "--seed") {
+            if (i + 1 >= args.size()) throw usage_error("--seed: missing value");
+            const std::string& v = args[++i];
+            char* end = nullptr;
+            const unsigned long parsed = std::strtoul(v.c_str(), &end, 10);
+            if (v.empty() || *end != '\0' || parsed > 0xffffffffUL) throw usage_error("--seed: expected 0..4294967295, got '" + v + "'");
+            seed = static_cast<std::uint32_t>(parsed);
+        } else if (a == "--only" || a == "--out") {
             if (i + 1 >= args.size() || args[i + 1].empty()) throw usage_error(a + ": missing value");
             if (a == "--only")
                 only = args[++i];
@@ -106,11 +117,12 @@ int run(const std::vector<std::string>& args) {
     if (!positional.empty()) throw usage_error(command + ": unexpected argument '" + positional[0] + "'");
     if (command == "update") {
         if (!out.empty()) throw usage_error("update writes into " + golden_dir.string() + "; --out is for render");
-        return render_all(golden_dir, only, true);
+        if (seed != golden_seed) throw usage_error("update renders with the golden seed only; --seed is for render");
+        return render_all(golden_dir, only, true, seed);
     }
     if (command == "render") {
         if (out.empty()) throw usage_error("render: --out DIR is required");
-        return render_all(out, only, false);
+        return render_all(out, only, false, seed);
     }
     throw usage_error("unknown command '" + command + "' (update, render or compare)");
 }
