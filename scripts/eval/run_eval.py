@@ -475,6 +475,8 @@ def main():
 
     with tempfile.TemporaryDirectory(prefix="emcv-eval-") as tmp:
         if not a.plots_only:
+            head = subprocess.run(["git", "-C", ROOT, "describe", "--always", "--dirty"], capture_output=True, text=True)
+            write_atomically(os.path.join(RAW, "commit.txt"), (head.stdout.strip() or "unknown") + "\n")
             if "quality" in stages:
                 save_rows("quality.csv", stage_quality(a, tmp))
             if "switch" in stages:
@@ -505,7 +507,9 @@ def main():
                 save_rows("scaling-radius.csv", rows)
 
     device = open(device_file).read().strip() if os.path.exists(device_file) else "unknown GL renderer"
-    blocks = {"context": f"Renderer: **{device}** (GL_RENDERER); load average at the end of the run: "
+    commit_file = os.path.join(RAW, "commit.txt")
+    commit = open(commit_file).read().strip() if os.path.exists(commit_file) else "unknown"
+    blocks = {"context": f"Renderer: **{device}** (GL_RENDERER), commit {commit}; load average at the end of the run: "
                          f"{' '.join(f'{x:.1f}' for x in os.getloadavg())} on {os.cpu_count()} CPUs."}
     if os.path.exists(os.path.join(RAW, "quality.csv")):
         rows = read_csv(os.path.join(RAW, "quality.csv"))
