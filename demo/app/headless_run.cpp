@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <optional>
+#include <utility>
+#include <stdexcept>
 #include <system_error>
 
 #include "gl/image_io.hpp"
@@ -49,6 +51,15 @@ void write_frame(const fs::path& path, const gl::float_image& image) {
     }
 }
 
+/// Metrics of an image holding NaN or Inf would be NaN (and an empty CSV field): stop with the reason instead.
+void require_finite(const gl::float_image& image, const char* what, const method& m, int frame) {
+    std::size_t bad = 0;
+    for (float v : image.pixels) bad += std::isfinite(v) ? 0u : 1u;
+    if (bad > 0)
+        throw std::runtime_error("frame " + std::to_string(frame) + ", method " + m.name() + ": the " + what +
+                                 " image holds " + std::to_string(bad) + " NaN or infinite values");
+}
+
 /// One method being rendered: its renderer and the previous frame's display image (temporal error).
 struct method_run {
     method m;
@@ -82,10 +93,6 @@ run_result run_headless(const scene& s, const options& o, int frames) {
         runs.push_back({m, renderer(s, m, ro), std::nullopt});
         result.method_names.push_back(m.name());
     }
-    if (o.out) {
-        make_output_directory(*o.out);
-        for (const method_run& run : runs) make_output_directory(*o.out / run.m.name());
-    }
 
     progress_bar progress(frames);
     for (int frame = 0; frame < frames; ++frame) {
@@ -94,6 +101,7 @@ run_result run_headless(const scene& s, const options& o, int frames) {
         const frame_stats ref_stats = ref.r.render(frame);
         gl::float_image ref_display = ref.r.display();
         const gl::float_image ref_linear = ref.r.linear();
+        require_finite(ref_linear, "linear", ref.m, frame);
         const pixel_mask sss = mask_of(ref.r.sss_mask());
         std::optional<gl::float_image>& ref_previous = ref.previous_display;
 
@@ -101,6 +109,7 @@ run_result run_headless(const scene& s, const options& o, int frames) {
         // after the reference's readback: position in the frame must not show up as a difference in frame_ms
         // between methods (docs/demo.md, no-sss against diffuse). Rows keep the run order.
         std::vector<metrics_row> frame_rows(runs.size());
+        std::vector<std::pair<fs::path, gl::float_image>> pending;  // written once every method passed its checks
         for (std::size_t k = 0; k < runs.size(); ++k) {
             const std::size_t i = (k + static_cast<std::size_t>(frame)) % runs.size();
             method_run& run = runs[i];
@@ -108,6 +117,7 @@ run_result run_headless(const scene& s, const options& o, int frames) {
             const frame_stats stats = is_reference ? ref_stats : run.r.render(frame);
             gl::float_image display = is_reference ? ref_display : run.r.display();
             const gl::float_image linear = is_reference ? ref_linear : run.r.linear();
+            require_finite(linear, "linear", run.m, frame);
 
             metrics_row& row = frame_rows[i];
             row.frame = frame;
@@ -125,10 +135,18 @@ run_result run_headless(const scene& s, const options& o, int frames) {
 
             if (o.out) {
                 const fs::path dir = *o.out / run.m.name();
-                write_frame(dir / frame_file(frame, "png"), display);
-                if (o.exr) write_frame(dir / frame_file(frame, "exr"), linear);
+                pending.push_back({dir / frame_file(frame, "png"), display});
+                if (o.exr) pending.push_back({dir / frame_file(frame, "exr"), linear});
             }
             if (!is_reference) run.previous_display = std::move(display);
+        }
+        if (o.out) {
+            // Folders appear with the first frame that is complete: a run that fails earlier leaves nothing.
+            if (frame == 0) {
+                make_output_directory(*o.out);
+                for (const method_run& run : runs) make_output_directory(*o.out / run.m.name());
+            }
+            for (const auto& [path, image] : pending) write_frame(path, image);
         }
         // The reference's previous image is replaced last: the others compared against the old one above.
         ref.previous_display = std::move(ref_display);

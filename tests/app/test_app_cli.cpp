@@ -147,6 +147,20 @@ TEST_CASE("no OpenGL platform: one line, exit 1, nothing written", "[app][cli]")
                    "env -u DISPLAY -u WAYLAND_DISPLAY EMCV_GL_PLATFORMS=window");
 }
 
+TEST_CASE("an image holding NaN or Inf stops the run: one line, exit 1, nothing written", "[app][cli][gl]") {
+    // A valid scene whose light (3e38 x colour 3) overflows fp32 radiance: metrics would silently be NaN.
+    const fs::path out = scratch_dir("overflow") / "out";
+    const emcv_test::command_result r = run_demo("--scene '" + data_dir +
+                                                 "/overflow.json' --size 32x32 --frames 2 --method diffuse --out '" +
+                                                 out.string() + "'");
+    if (no_display(r)) SKIP("no OpenGL display: " << r.err);
+    INFO(r.err);
+    CHECK(r.exit_code == 1);
+    CHECK(count_lines(r.err) == 1);
+    CHECK(r.err.find("NaN or infinite") != std::string::npos);
+    CHECK_FALSE(fs::exists(out));
+}
+
 TEST_CASE("--list-scenes lists every built-in scene file with a description", "[app][cli]") {
     const emcv_test::command_result r = run_demo("--list-scenes");
     INFO(r.err);
