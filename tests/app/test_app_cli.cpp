@@ -71,7 +71,7 @@ std::vector<std::string> split(const std::string& line, char separator) {
 
 }  // namespace
 
-TEST_CASE("--help lists every flag and exits 0", "[app][cli]") {
+TEST_CASE("the help text (--help) lists every flag and exits 0", "[app][cli]") {
     const emcv_test::command_result r = run_demo("--help");
     REQUIRE(r.exit_code == 0);
     for (const char* flag : {"--scene", "--method", "--frames", "--size", "--out", "--seed", "--exr", "--window",
@@ -161,7 +161,7 @@ TEST_CASE("an image holding NaN or Inf stops the run: one line, exit 1, nothing 
     CHECK_FALSE(fs::exists(out));
 }
 
-TEST_CASE("--list-scenes lists every built-in scene file with a description", "[app][cli]") {
+TEST_CASE("the scene list (--list-scenes) names every built-in scene file with a description", "[app][cli]") {
     const emcv_test::command_result r = run_demo("--list-scenes");
     INFO(r.err);
     REQUIRE(r.exit_code == 0);
@@ -182,7 +182,7 @@ TEST_CASE("--list-scenes lists every built-in scene file with a description", "[
     CHECK(listed.count("light-off") == 1);
 }
 
-TEST_CASE("--print-passes prints each method's pass list without a GL context", "[app][cli]") {
+TEST_CASE("the pass list (--print-passes) is printed per method without a GL context", "[app][cli]") {
     const std::string scene = "--scene '" + data_dir + "/tiny.json' --frames 3 --print-passes ";
     const emcv_test::command_result r = run_demo(scene + "--method diffuse,burley-8", "EMCV_GL_PLATFORMS=none");
     INFO(r.err);
@@ -269,7 +269,7 @@ TEST_CASE("the progress bar is drawn when stderr is a terminal", "[app][cli][gl]
     CHECK(r.out.find("frames/s") != std::string::npos);
 }
 
-TEST_CASE("--window runs a few frames under Xvfb and its keys act", "[app][cli][gl][window]") {
+TEST_CASE("the window (--window) runs a few frames under Xvfb and its keys act", "[app][cli][gl][window]") {
     if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
         SKIP("xvfb-run is missing (Debian package xvfb; scripts/install-deps.sh installs it)");
     // Keys pressed one per frame from frame 1 (EMCV_DEMO_KEYS): next method, heatmap, light 1, heatmap again,
@@ -287,7 +287,7 @@ TEST_CASE("--window runs a few frames under Xvfb and its keys act", "[app][cli][
     CHECK(r.out.find("window: 7 frames") != std::string::npos);
 }
 
-TEST_CASE("--window with a bad scripted key: one line, non-zero exit", "[app][cli][window]") {
+TEST_CASE("the window with a bad scripted key: one line, non-zero exit", "[app][cli][window]") {
     const emcv_test::command_result r =
         run_demo("--window --scene '" + data_dir + "/tiny.json' --size 16x16 --frames 2", "EMCV_DEMO_KEYS=X");
     CHECK(r.exit_code != 0);
