@@ -21,7 +21,8 @@ struct scattering_footprint {
 /// The fraction of the profile's energy within radius_mm.
 constexpr float footprint_energy_fraction = 0.997f;
 
-/// One entry per object with a scattering material, camera at `frame`, viewport width x height pixels.
+/// One entry per object with a scattering material, camera at `frame`, viewport width x height pixels. Uses
+/// the material's albedo for s(A); an albedo texture, which multiplies it per pixel, is not sampled here.
 std::vector<scattering_footprint> scattering_footprints(const scene& s, int frame, int width, int height);
 
 }  // namespace emcv::demo

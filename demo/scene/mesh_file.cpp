@@ -26,6 +26,7 @@ void append_node(const aiScene& scene, const aiNode& node, const glm::mat4& pare
     for (unsigned i = 0; i < node.mNumMeshes; ++i) {
         const aiMesh& m = *scene.mMeshes[node.mMeshes[i]];
         if (!(m.mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;  // point clouds, lines
+        if (!m.HasNormals()) throw mesh_file_error("assimp computed no normals for a triangle mesh");
         if (out.vertices.size() + m.mNumVertices > std::numeric_limits<std::uint32_t>::max())
             throw mesh_file_error("too many vertices for 32-bit indices");
         const auto first = static_cast<std::uint32_t>(out.vertices.size());
@@ -59,8 +60,9 @@ mesh read_mesh_file(const std::filesystem::path& path) {
     if (!std::filesystem::exists(path, ec)) throw mesh_file_error("mesh file not found: " + path.string());
     if (!std::filesystem::is_regular_file(path, ec)) throw mesh_file_error("not a regular file: " + path.string());
     Assimp::Importer importer;
-    // Keep assimp from silently dropping what we would not notice: no vertex merging across seams beyond
-    // identical vertices, no transform baking that loses the node hierarchy (we apply it ourselves).
+    // Polygons to triangles; weld identical vertices (OBJ stores one per face corner); smooth normals only
+    // where the file has none; points and lines split into meshes of their own (skipped below). The node
+    // transforms are applied by append_node.
     const aiScene* scene = importer.ReadFile(
         path.string(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
                            aiProcess_SortByPType);
