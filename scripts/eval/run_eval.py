@@ -442,6 +442,21 @@ def scaling_table(groups, xname, xfmt):
     return "\n".join(lines)
 
 
+def per_sss_pixel_table(groups):
+    """SSS pass time per SSS pixel (ns): flat where the cost is proportional to the scattering pixels."""
+    methods = sorted(groups)
+    xs = sorted({x for g in groups.values() for x in g})
+    lines = ["| pixels | SSS pixels | " + " | ".join(f"{m} ns/SSS px" for m in methods) + " |",
+             "|---|---:|" + "---:|" * len(methods)]
+    for x in xs:
+        any_rows = next(groups[m][x] for m in methods if x in groups[m])
+        sss = int(any_rows[0]["sss_pixels"])
+        cells = [fmt(1e6 * median([to_float(r["sss_ms"]) for r in groups[m].get(x, [])]) / max(sss, 1), 0)
+                 for m in methods]
+        lines.append(f"| {x} | {sss} | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
 def replace_block(text, name, body):
     begin, end = f"<!-- BEGIN GENERATED: {name} -->", f"<!-- END GENERATED: {name} -->"
     i, j = text.find(begin), text.find(end)
@@ -509,8 +524,12 @@ def main():
     device = open(device_file).read().strip() if os.path.exists(device_file) else "unknown GL renderer"
     commit_file = os.path.join(RAW, "commit.txt")
     commit = open(commit_file).read().strip() if os.path.exists(commit_file) else "unknown"
-    blocks = {"context": f"Renderer: **{device}** (GL_RENDERER), commit {commit}; load average at the end of the run: "
-                         f"{' '.join(f'{x:.1f}' for x in os.getloadavg())} on {os.cpu_count()} CPUs."}
+    load_file = os.path.join(RAW, "load.txt")
+    if not a.plots_only:
+        write_atomically(load_file, " ".join(f"{x:.1f}" for x in os.getloadavg()) + f" on {os.cpu_count()} CPUs\n")
+    load = open(load_file).read().strip() if os.path.exists(load_file) else "not recorded"
+    blocks = {"context": f"Renderer: **{device}** (GL_RENDERER), commit {commit}; load average (1, 5, 15 min) at "
+                         f"the end of the run: {load}."}
     if os.path.exists(os.path.join(RAW, "quality.csv")):
         rows = read_csv(os.path.join(RAW, "quality.csv"))
         summary = summarize_quality(rows)
@@ -528,7 +547,8 @@ def main():
     if os.path.exists(os.path.join(RAW, "scaling-resolution.csv")):
         g = plot_scaling(read_csv(os.path.join(RAW, "scaling-resolution.csv")), "scaling-resolution",
                          "pixels (log)", "static: cost against resolution", device, pixels=True)
-        blocks["scaling-resolution"] = scaling_table(g, "pixels", lambda x: f"{x}")
+        blocks["scaling-resolution"] = scaling_table(g, "pixels", lambda x: f"{x}") + "\n\n" + \
+            per_sss_pixel_table(g)
         g = plot_scaling(read_csv(os.path.join(RAW, "scaling-radius.csv")), "scaling-radius",
                          "mean free path scale (radius on screen, log)", "static at 256x256: cost against the "
                          "scattering radius", device)
