@@ -112,8 +112,10 @@ options parse_options(const std::vector<std::string>& args) {
             if (o.scene.empty()) fail(flag, "expected a file or a built-in scene name", o.scene);
         } else if (flag == "--method") {
             const std::string list = next_value();
-            if (methods_given) fail(flag, "given twice; list methods with commas", list);
+            // A later --method replaces an earlier one, like every other flag (scripts/quickstart.sh passes
+            // --method all and then the user's flags).
             methods_given = true;
+            o.methods.clear();
             std::size_t start = 0;
             while (true) {
                 const std::size_t comma = list.find(',', start);
