@@ -11,10 +11,13 @@ packages=(
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev   # headless GL (Mesa llvmpipe)
   libopenimageio-dev                       # EXR / PNG output
   nlohmann-json3-dev                       # scene files, JSON output
+  libassimp-dev libmeshoptimizer-dev       # mesh files in scenes; decimating the demo assets
   libbenchmark-dev libboost-dev            # emcv-bench and the Boost.Accumulators comparison
   glslang-tools spirv-cross                # offline GLSL validation; SPIR-V to HLSL/MSL (package tests)
   doxygen                                  # API reference (scripts/docs.sh, ctest -L docs)
+  xvfb xauth                               # xvfb-run: the emcv-demo --window test
   python3 python3-matplotlib python3-numpy # plots in docs/
+  python3-jsonschema                       # tests/scene: the scene schema against the built-in scenes
 )
 
 missing=()

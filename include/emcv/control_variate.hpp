@@ -42,6 +42,37 @@ T cv_residual(T f, T alpha, T g) noexcept {
     return f - alpha * g;
 }
 
+/// Variance of the residual f - alpha G from the covariance of (f, G), Eq. 29:
+///     Var(f - alpha G) = C_ff - 2 alpha C_fG + alpha^2 C_GG.
+/// It is a variance of a linear combination, so it is >= 0 for any positive semi-definite covariance; a
+/// negative value can only come from rounding (or an inconsistent state) and is clamped to 0. A non-finite
+/// input gives a non-finite result (sample_count turns a NaN into n_max: a broken history samples).
+template <class T>
+T cv_residual_variance(T c_ff, T c_fg, T c_gg, T alpha) noexcept {
+    const T v = c_ff - T(2) * alpha * c_fg + alpha * alpha * c_gg;
+    return v > T(0) ? v : (v == v ? T(0) : v);
+}
+
+/// The residual variance at the optimal coefficient, min over alpha of Var(f - alpha G) (Eq. 31):
+///     alpha* = C_fG / C_GG,   Var(f - alpha* G) = C_ff - C_fG^2 / C_GG.
+/// The adaptive sample count is proportional to this variance (N = Var / target), and the alpha that minimises
+/// N is the alpha that minimises the variance: one EMCM gives both (joint optimisation, PAPER.md section 5).
+/// Evaluated as C_ff - alpha* C_fG with alpha* = cv_coefficient(C_fG, C_GG, var_floor), so where alpha's guard
+/// gives 0 (C_GG not above the floor, non-finite C_fG) the result is C_ff: no control variate, the variance
+/// of f itself, which can only over-state what the sampler needs. Clamped to >= 0 like cv_residual_variance.
+template <class T>
+T cv_optimal_residual_variance(T c_ff, T c_fg, T c_gg, T var_floor = std::numeric_limits<T>::min()) noexcept {
+    const T alpha = cv_coefficient(c_fg, c_gg, var_floor);
+    const T v = c_ff - alpha * c_fg;
+    return v > T(0) ? v : (v == v ? T(0) : v);
+}
+
+/// cv_optimal_residual_variance of an EMCM over (f, G): Var(f - alpha G) = C_ff - C_fG^2 / C_GG.
+template <class T>
+T cv_optimal_residual_variance(const emcm<T, 2>& fg, T var_floor = std::numeric_limits<T>::min()) noexcept {
+    return cv_optimal_residual_variance(fg.variance(0), fg.covariance(0, 1), fg.variance(1), var_floor);
+}
+
 /// The residuals compared in the paper's toy experiment (PAPER.md section 3, Table 1). In every policy the
 /// coefficient applied to frame t comes from frames up to t - 1.
 enum class residual_policy {

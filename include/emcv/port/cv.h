@@ -40,6 +40,27 @@ EMCV_FN float emcv_cv_residual(float f, float alpha, float g) {
     return r;
 }
 
+/// Var(f - alpha G) = C_ff - 2 alpha C_fG + alpha^2 C_GG (Eq. 29), clamped to >= 0 (a negative value is
+/// rounding); NaN stays NaN. Twin of emcv::cv_residual_variance.
+EMCV_FN float emcv_cv_residual_variance(float c_ff, float c_fg, float c_gg, float alpha) {
+    EMCV_PRECISE float v = c_ff - 2.0f * alpha * c_fg + alpha * alpha * c_gg;
+    return v > 0.0f ? v : (emcv_is_nan(v) ? v : 0.0f);
+}
+
+/// min over alpha of Var(f - alpha G) = C_ff - C_fG^2 / C_GG (Eq. 31), evaluated as C_ff - alpha* C_fG with
+/// the guarded alpha* (C_ff where the guard gives 0), clamped to >= 0. Twin of
+/// emcv::cv_optimal_residual_variance.
+EMCV_FN float emcv_cv_optimal_residual_variance(float c_ff, float c_fg, float c_gg) {
+    float alpha = emcv_cv_coefficient(c_fg, c_gg);
+    EMCV_PRECISE float v = c_ff - alpha * c_fg;
+    return v > 0.0f ? v : (emcv_is_nan(v) ? v : 0.0f);
+}
+
+/// The same from an EMCM over (f, G).
+EMCV_FN float emcv_cv_optimal_residual_variance_emcm2(EMCV_IN(EmcvEmcm2) s) {
+    return emcv_cv_optimal_residual_variance(s.cov.x, s.cov.y, s.cov.z);
+}
+
 EMCV_PORT_END
 
 #endif  // #ifndef EMCV_PORT_CV_H

@@ -1,0 +1,164 @@
+// SPDX-License-Identifier: MIT
+#include "headless_run.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <utility>
+#include <stdexcept>
+#include <system_error>
+
+#include "gl/image_io.hpp"
+#include "image_metrics.hpp"
+#include "progress.hpp"
+#include "render/renderer.hpp"
+
+namespace emcv::demo::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+image_view view_of(const gl::float_image& image) {
+    return {image.width, image.height, image.channels, image.pixels.data()};
+}
+
+/// renderer::sss_mask() (one float channel) as the metrics' pixel mask.
+pixel_mask mask_of(const gl::float_image& mask) {
+    pixel_mask out(static_cast<std::size_t>(mask.width) * static_cast<std::size_t>(mask.height));
+    for (std::size_t p = 0; p < out.size(); ++p)
+        out[p] = mask.pixels[p * static_cast<std::size_t>(mask.channels)] > 0.5f ? 1 : 0;
+    return out;
+}
+
+std::string frame_file(int frame, const char* extension) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame-%04d.%s", frame, extension);
+    return name;
+}
+
+void make_output_directory(const fs::path& dir) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw output_error("cannot create directory '" + dir.string() + "': " + ec.message());
+}
+
+void write_frame(const fs::path& path, const gl::float_image& image) {
+    try {
+        gl::write_image(path, image);
+    } catch (const gl::image_error& e) {
+        throw output_error(e.what());
+    }
+}
+
+/// Metrics of an image holding NaN or Inf would be NaN (and an empty CSV field): stop with the reason instead.
+void require_finite(const gl::float_image& image, const char* what, const method& m, int frame) {
+    std::size_t bad = 0;
+    for (float v : image.pixels) bad += std::isfinite(v) ? 0u : 1u;
+    if (bad > 0)
+        throw std::runtime_error("frame " + std::to_string(frame) + ", method " + m.name() + ": the " + what +
+                                 " image holds " + std::to_string(bad) + " NaN or infinite values");
+}
+
+/// One method being rendered: its renderer and the previous frame's display image (temporal error).
+struct method_run {
+    method m;
+    renderer r;
+    std::optional<gl::float_image> previous_display;
+};
+
+}  // namespace
+
+std::vector<method> methods_to_render(const std::vector<method>& requested) {
+    std::vector<method> out = requested;
+    bool has_reference = false;
+    for (const method& m : requested) has_reference = has_reference || m.type == method::kind::reference;
+    if (!has_reference) out.push_back(*parse_method("reference"));
+    return out;
+}
+
+run_result run_headless(const scene& s, const options& o, int frames) {
+    render_options ro;
+    ro.width = o.width;
+    ro.height = o.height;
+    ro.seed = o.seed;
+    ro.approximate_inverse_cdf = o.approximate_cdf;
+    ro.timing_mode = timing::per_frame;
+
+    run_result result;
+    std::vector<method_run> runs;
+    std::size_t reference_index = 0;
+    for (const method& m : methods_to_render(o.methods)) {
+        if (m.type == method::kind::reference) reference_index = runs.size();
+        runs.push_back({m, renderer(s, m, ro), std::nullopt});
+        result.method_names.push_back(m.name());
+    }
+
+    progress_bar progress(frames);
+    for (int frame = 0; frame < frames; ++frame) {
+        // The reference first: every other method of this frame is measured against it.
+        method_run& ref = runs[reference_index];
+        const frame_stats ref_stats = ref.r.render(frame);
+        gl::float_image ref_display = ref.r.display();
+        const gl::float_image ref_linear = ref.r.linear();
+        require_finite(ref_linear, "linear", ref.m, frame);
+        const pixel_mask sss = mask_of(ref.r.sss_mask());
+        std::optional<gl::float_image>& ref_previous = ref.previous_display;
+
+        // The other methods start one further along each frame, so that no method always renders right
+        // after the reference's readback: position in the frame must not show up as a difference in frame_ms
+        // between methods (docs/demo.md, no-sss against diffuse). Rows keep the run order.
+        std::vector<metrics_row> frame_rows(runs.size());
+        std::vector<std::pair<fs::path, gl::float_image>> pending;  // written once every method passed its checks
+        for (std::size_t k = 0; k < runs.size(); ++k) {
+            const std::size_t i = (k + static_cast<std::size_t>(frame)) % runs.size();
+            method_run& run = runs[i];
+            const bool is_reference = i == reference_index;
+            const frame_stats stats = is_reference ? ref_stats : run.r.render(frame);
+            gl::float_image display = is_reference ? ref_display : run.r.display();
+            const gl::float_image linear = is_reference ? ref_linear : run.r.linear();
+            require_finite(linear, "linear", run.m, frame);
+
+            metrics_row& row = frame_rows[i];
+            row.frame = frame;
+            row.method = run.m.name();
+            row.sss_ms = stats.sss_ms;
+            row.frame_ms = stats.frame_ms;
+            row.mean_spp = stats.mean_spp;
+            row.max_spp = stats.max_spp;
+            row.psnr_db = psnr_db(view_of(display), view_of(ref_display));
+            row.psnr_sss_db = psnr_db(view_of(display), view_of(ref_display), &sss);
+            row.rel_mse = relative_mse(view_of(linear), view_of(ref_linear));
+            if (run.previous_display && ref_previous)
+                row.temporal_error = temporal_error(view_of(display), view_of(*run.previous_display),
+                                                    view_of(ref_display), view_of(*ref_previous));
+
+            if (o.out) {
+                const fs::path dir = *o.out / run.m.name();
+                pending.push_back({dir / frame_file(frame, "png"), display});
+                if (o.exr) pending.push_back({dir / frame_file(frame, "exr"), linear});
+            }
+            if (!is_reference) run.previous_display = std::move(display);
+        }
+        if (o.out) {
+            // Folders appear with the first frame that is complete: a run that fails earlier leaves nothing.
+            if (frame == 0) {
+                make_output_directory(*o.out);
+                for (const method_run& run : runs) make_output_directory(*o.out / run.m.name());
+            }
+            for (const auto& [path, image] : pending) write_frame(path, image);
+        }
+        // The reference's previous image is replaced last: the others compared against the old one above.
+        ref.previous_display = std::move(ref_display);
+        for (metrics_row& row : frame_rows) result.rows.push_back(std::move(row));
+        progress.update(frame + 1);
+    }
+
+    if (o.out) {
+        write_file_atomically(*o.out / "metrics.csv", metrics_csv(result.rows));
+        write_file_atomically(*o.out / "metrics.json", metrics_json(result.rows));
+    }
+    return result;
+}
+
+}  // namespace emcv::demo::app

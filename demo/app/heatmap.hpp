@@ -1,0 +1,13 @@
+// SPDX-License-Identifier: MIT
+// Samples per pixel as colours (the window's heatmap view).
+#pragma once
+
+#include "gl/image_io.hpp"
+
+namespace emcv::demo::app {
+
+/// RGBA display colours (alpha 1) for a one-channel count image: 0 is black, then blue, green, yellow, red
+/// at `max_count` and above. Same size and row order as `counts`.
+gl::float_image sample_heatmap(const gl::float_image& counts, float max_count);
+
+}  // namespace emcv::demo::app

@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: MIT
+#include "listings.hpp"
+
+#include <algorithm>
+#include <string>
+
+#include "scene/load.hpp"
+
+namespace emcv::demo::app {
+namespace {
+
+std::string joined(const std::vector<std::string>& items) {
+    std::string out;
+    for (const std::string& item : items) out += (out.empty() ? "" : ", ") + item;
+    return out;
+}
+
+void print_range(std::ostream& out, int first, int last, const std::vector<std::string>& passes) {
+    out << "  frames " << first << '-' << last << ": " << joined(passes) << '\n';
+}
+
+}  // namespace
+
+bool list_scenes(std::ostream& out) {
+    bool all_loaded = true;
+    std::size_t width = 0;
+    const std::vector<std::string> names = builtin_scene_names();
+    for (const std::string& name : names) width = std::max(width, name.size());
+    for (const std::string& name : names) {
+        out << name << std::string(width + 2 - name.size(), ' ');
+        try {
+            out << load_scene(builtin_scene_dir() / (name + ".json")).description << '\n';
+        } catch (const scene_error& e) {
+            out << "(does not load: " << e.what() << ")\n";
+            all_loaded = false;
+        }
+    }
+    return all_loaded;
+}
+
+void print_passes(std::ostream& out, const scene& s, const std::vector<method>& methods, int frames, int width,
+                  int height) {
+    for (const method& m : methods) {
+        out << "method " << m.name() << ":\n";
+        std::vector<std::string> current = pass_list(s, m, 0, width, height);
+        int first = 0;
+        for (int frame = 1; frame < frames; ++frame) {
+            std::vector<std::string> passes = pass_list(s, m, frame, width, height);
+            if (passes == current) continue;
+            print_range(out, first, frame - 1, current);
+            current = std::move(passes);
+            first = frame;
+        }
+        print_range(out, first, frames - 1, current);
+    }
+}
+
+}  // namespace emcv::demo::app

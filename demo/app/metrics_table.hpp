@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: MIT
+// One row per frame and method (metrics.csv / metrics.json), and writing them so that a crash leaves no
+// half-written file. Column names are a contract: the evaluation and outside checks read them.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace emcv::demo::app {
+
+struct metrics_row {
+    int frame = 0;
+    std::string method;
+    double sss_ms = 0.0;
+    double frame_ms = 0.0;
+    double mean_spp = 0.0;
+    int max_spp = 0;
+    std::optional<double> psnr_db;         ///< +inf for the reference itself; empty: undefined
+    std::optional<double> psnr_sss_db;     ///< empty when no SSS pixel is visible
+    double rel_mse = 0.0;
+    std::optional<double> temporal_error;  ///< empty on the first frame (no previous frame)
+};
+
+inline constexpr std::array<const char*, 10> metrics_columns = {
+    "frame", "method", "sss_ms", "frame_ms", "mean_spp", "max_spp", "psnr_db", "psnr_sss_db", "rel_mse",
+    "temporal_error"};
+
+/// Writing an output failed; what() names the file.
+class output_error : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// CSV text: the header line, then one line per row. An undefined value is an empty field; +inf is "inf".
+std::string metrics_csv(const std::vector<metrics_row>& rows);
+
+/// JSON text: {"columns": [...], "rows": [{column: value, ...}, ...]}. JSON has no infinity: +inf and
+/// undefined values are null (the reference's PSNR against itself; see docs/demo.md).
+std::string metrics_json(const std::vector<metrics_row>& rows);
+
+/// Writes `text` to `path` through a temporary sibling and a rename. Throws output_error.
+void write_file_atomically(const std::filesystem::path& path, const std::string& text);
+
+}  // namespace emcv::demo::app

@@ -1,0 +1,106 @@
+// SPDX-License-Identifier: MIT
+#include "summary.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+namespace emcv::demo::app {
+namespace {
+
+/// Mean of the finite values; +inf when every defined value is +inf; empty when none is defined.
+std::optional<double> mean_psnr(const std::vector<std::optional<double>>& values) {
+    double sum = 0.0;
+    int finite = 0, infinite = 0;
+    for (const std::optional<double>& v : values) {
+        if (!v) continue;
+        if (std::isfinite(*v)) {
+            sum += *v;
+            ++finite;
+        } else {
+            ++infinite;
+        }
+    }
+    if (finite > 0) return sum / finite;
+    if (infinite > 0) return std::numeric_limits<double>::infinity();
+    return std::nullopt;
+}
+
+std::string psnr_text(const std::optional<double>& v) {
+    if (!v) return "-";
+    if (std::isinf(*v)) return "inf";
+    char b[32];
+    std::snprintf(b, sizeof b, "%.2f", *v);
+    return b;
+}
+
+}  // namespace
+
+double percentile(std::vector<double> values, double p) {
+    if (values.empty()) return 0.0;
+    std::sort(values.begin(), values.end());
+    const double position = std::clamp(p, 0.0, 100.0) / 100.0 * static_cast<double>(values.size() - 1);
+    const auto below = static_cast<std::size_t>(std::floor(position));
+    const std::size_t above = std::min(below + 1, values.size() - 1);
+    const double t = position - static_cast<double>(below);
+    return values[below] + t * (values[above] - values[below]);
+}
+
+std::vector<method_summary> summarize(const std::vector<metrics_row>& rows, const std::vector<std::string>& methods,
+                                      int timing_from_frame) {
+    std::vector<method_summary> out;
+    for (const std::string& name : methods) {
+        method_summary s;
+        s.method = name;
+        bool late_frames = false;
+        for (const metrics_row& r : rows) late_frames = late_frames || (r.method == name && r.frame >= timing_from_frame);
+        std::vector<double> sss_ms;
+        std::vector<std::optional<double>> psnr, psnr_sss;
+        double frame_ms = 0.0, spp = 0.0;
+        for (const metrics_row& r : rows) {
+            if (r.method != name) continue;
+            ++s.frames;
+            if (!late_frames || r.frame >= timing_from_frame) {
+                ++s.timed_frames;
+                sss_ms.push_back(r.sss_ms);
+                frame_ms += r.frame_ms;
+            }
+            spp += r.mean_spp;
+            s.max_spp = std::max(s.max_spp, r.max_spp);
+            psnr.push_back(r.psnr_db);
+            psnr_sss.push_back(r.psnr_sss_db);
+        }
+        if (s.frames > 0) {
+            double sum = 0.0;
+            for (double v : sss_ms) sum += v;
+            s.sss_ms_mean = sum / s.timed_frames;
+            s.sss_ms_p95 = percentile(sss_ms, 95.0);
+            s.frame_ms_mean = frame_ms / s.timed_frames;
+            s.mean_spp = spp / s.frames;
+        }
+        s.psnr_db = mean_psnr(psnr);
+        s.psnr_sss_db = mean_psnr(psnr_sss);
+        out.push_back(s);
+    }
+    return out;
+}
+
+std::string format_summary(const std::vector<method_summary>& summaries, const std::vector<std::string>& notes) {
+    std::ostringstream out;
+    char line[256];
+    std::snprintf(line, sizeof line, "%-14s %6s %9s %9s %9s %9s %8s %9s %10s\n", "method", "frames", "sss_ms",
+                  "sss_p95", "frame_ms", "mean_spp", "max_spp", "psnr_db", "psnr_sss");
+    out << line;
+    for (const method_summary& s : summaries) {
+        std::snprintf(line, sizeof line, "%-14s %6d %9.3f %9.3f %9.3f %9.1f %8d %9s %10s\n", s.method.c_str(),
+                      s.frames, s.sss_ms_mean, s.sss_ms_p95, s.frame_ms_mean, s.mean_spp, s.max_spp,
+                      psnr_text(s.psnr_db).c_str(), psnr_text(s.psnr_sss_db).c_str());
+        out << line;
+    }
+    for (const std::string& note : notes) out << note << '\n';
+    return out.str();
+}
+
+}  // namespace emcv::demo::app

@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: MIT
+// The summary table printed at the end of a run: one line per method, aggregated over its metrics rows.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "metrics_table.hpp"
+
+namespace emcv::demo::app {
+
+struct method_summary {
+    std::string method;
+    int frames = 0;
+    int timed_frames = 0;  ///< frames the times are averaged over
+    double sss_ms_mean = 0.0;
+    double sss_ms_p95 = 0.0;
+    double frame_ms_mean = 0.0;
+    double mean_spp = 0.0;  ///< mean over frames of the per-frame mean samples per SSS pixel
+    int max_spp = 0;        ///< largest per-pixel count of any frame
+    /// Mean over frames of the PSNR in dB, +inf frames (the reference itself) excluded; +inf when every frame
+    /// is identical to the reference, empty when no frame defines it.
+    std::optional<double> psnr_db;
+    std::optional<double> psnr_sss_db;
+};
+
+/// p-th percentile (p in [0, 100]) by linear interpolation between order statistics; 0 for no values.
+double percentile(std::vector<double> values, double p);
+
+/// Aggregates rows per method, in the order given. Times (sss_ms, frame_ms) are taken over the frames from
+/// `timing_from_frame` on, so that the first frame's one-off costs (shader compilation and first use of each
+/// resource on the driver) do not stand in for the steady state; over every frame when none is that late.
+/// Sample counts and PSNR are taken over every frame.
+std::vector<method_summary> summarize(const std::vector<metrics_row>& rows, const std::vector<std::string>& methods,
+                                      int timing_from_frame = 1);
+
+/// The table, then each of `notes` on its own line (issue 9: the cv vs spvg ratio line after the switch).
+std::string format_summary(const std::vector<method_summary>& summaries, const std::vector<std::string>& notes = {});
+
+}  // namespace emcv::demo::app

@@ -1,0 +1,151 @@
+// SPDX-License-Identifier: MIT
+#include "history.hpp"
+
+#include <cstring>
+#include <stdexcept>
+
+#include <glm/gtc/packing.hpp>
+
+#include <emcv/port/cv.h>
+
+#include "adaptive/bindings.h"
+#include "gl/debug.hpp"
+
+namespace emcv::demo::adaptive {
+
+namespace {
+
+gl::texture_2d make_texture(GLenum format, int width, int height) {
+    gl::texture_2d t = gl::texture_2d::create();
+    glTextureStorage2D(t.id(), 1, format, width, height);
+    glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(t.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glClearTexImage(t.id(), 0, format == GL_R8UI || format == GL_R32UI ? GL_RED_INTEGER : GL_RED,
+                    format == GL_R8UI || format == GL_R32UI ? GL_UNSIGNED_INT : GL_FLOAT, nullptr);
+    return t;
+}
+
+/// History formats (include/emcv/port/history.h): spvg and cv-notex one RGBA16F; cv RGBA32F + RG16F.
+GLenum format_a(kind k) { return k == kind::cv ? GL_RGBA32F : GL_RGBA16F; }
+constexpr GLenum format_b = GL_RG16F;
+
+const char* suffix(kind k) {
+    switch (k) {
+        case kind::spvg: return "spvg";
+        case kind::cv: return "cv";
+        case kind::cv_notex: return "notex";
+    }
+    return "spvg";
+}
+
+
+}  // namespace
+
+history::history(kind k, int width, int height, const gl::preprocess_options& shaders,
+                 const std::filesystem::path& shader_dir)
+    : kind_(k), width_(width), height_(height) {
+    if (width < 1 || height < 1) throw std::runtime_error("adaptive history: empty size");
+    const std::filesystem::path dir = shader_dir / "adaptive";
+    samples_program_ = gl::program::compute(dir / (std::string("samples_") + suffix(k) + ".comp.glsl"), shaders);
+    update_program_ = gl::program::compute(dir / (std::string("update_") + suffix(k) + ".comp.glsl"), shaders);
+    for (int i = 0; i < 2; ++i) {
+        a_[static_cast<std::size_t>(i)] = make_texture(format_a(k), width, height);
+        // The second texture exists only where the layout has one (cv); the others allocate nothing more.
+        if (k == kind::cv) b_[static_cast<std::size_t>(i)] = make_texture(format_b, width, height);
+    }
+    samples_ = make_texture(GL_R32UI, width, height);
+    prev_depth_ = make_texture(GL_R32F, width, height);
+    prev_normal_ = make_texture(GL_RGBA16F, width, height);
+    prev_material_ = make_texture(GL_R8UI, width, height);  // 0 = background: every pixel starts fresh
+}
+
+void history::record_samples() {
+    const std::size_t cur = static_cast<std::size_t>(current_), prev = 1 - cur;
+    samples_program_.use();
+    glBindTextureUnit(EMCV_ADAPTIVE_TEX_HISTORY_PREV_A, a_[prev].id());
+    glBindTextureUnit(EMCV_ADAPTIVE_TEX_HISTORY_PREV_B, kind_ == kind::cv ? b_[prev].id() : a_[prev].id());
+    glBindTextureUnit(EMCV_ADAPTIVE_TEX_PREV_DEPTH, prev_depth_.id());
+    glBindTextureUnit(EMCV_ADAPTIVE_TEX_PREV_NORMAL, prev_normal_.id());
+    glBindTextureUnit(EMCV_ADAPTIVE_TEX_PREV_MATERIAL, prev_material_.id());
+    glBindImageTexture(EMCV_ADAPTIVE_IMG_HISTORY_A, a_[cur].id(), 0, GL_FALSE, 0, GL_READ_WRITE, format_a(kind_));
+    if (kind_ == kind::cv)
+        glBindImageTexture(EMCV_ADAPTIVE_IMG_HISTORY_B, b_[cur].id(), 0, GL_FALSE, 0, GL_READ_WRITE, format_b);
+    glBindImageTexture(EMCV_ADAPTIVE_IMG_SAMPLES, samples_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glDispatchComputeIndirect(0);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+void history::record_update(GLuint scattered) {
+    const std::size_t cur = static_cast<std::size_t>(current_);
+    update_program_.use();
+    glBindTextureUnit(EMCV_RENDER_TEX_SSS_IN, scattered);
+    glBindImageTexture(EMCV_ADAPTIVE_IMG_HISTORY_A, a_[cur].id(), 0, GL_FALSE, 0, GL_READ_WRITE, format_a(kind_));
+    if (kind_ == kind::cv)
+        glBindImageTexture(EMCV_ADAPTIVE_IMG_HISTORY_B, b_[cur].id(), 0, GL_FALSE, 0, GL_READ_WRITE, format_b);
+    glBindImageTexture(EMCV_ADAPTIVE_IMG_SAMPLES, samples_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glDispatchComputeIndirect(0);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+}
+
+void history::end_frame(GLuint depth, GLuint normal, GLuint material, bool updated) {
+    gl::debug_group group("adaptive-keep-gbuffer");
+    if (updated) {
+        glCopyImageSubData(depth, GL_TEXTURE_2D, 0, 0, 0, 0, prev_depth_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width_,
+                           height_, 1);
+        glCopyImageSubData(normal, GL_TEXTURE_2D, 0, 0, 0, 0, prev_normal_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width_,
+                           height_, 1);
+        glCopyImageSubData(material, GL_TEXTURE_2D, 0, 0, 0, 0, prev_material_.id(), GL_TEXTURE_2D, 0, 0, 0, 0,
+                           width_, height_, 1);
+        current_ = 1 - current_;
+    } else {
+        reset();
+    }
+}
+
+void history::reset() {
+    glClearTexImage(prev_material_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+}
+
+std::vector<texel> history::read() const {
+    // end_frame swapped: the newest history is the one the next frame reprojects from.
+    const std::size_t cur = 1 - static_cast<std::size_t>(current_);
+    const std::size_t count = std::size_t(width_) * std::size_t(height_);
+    std::vector<glm::vec4> a(count);
+    glGetTextureImage(a_[cur].id(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(count * sizeof(glm::vec4)), a.data());
+    std::vector<glm::vec4> b(count, glm::vec4(0.0f));
+    if (kind_ == kind::cv)
+        glGetTextureImage(b_[cur].id(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(count * sizeof(glm::vec4)),
+                          b.data());
+    std::vector<texel> out(count);
+    for (std::size_t i = 0; i < count; ++i) out[i] = {a[i], glm::vec2(b[i])};
+    return out;
+}
+
+void history::write_previous(const std::vector<texel>& texels) {
+    const std::size_t count = std::size_t(width_) * std::size_t(height_);
+    if (texels.size() != count) throw std::invalid_argument("adaptive history: write_previous needs one texel per pixel");
+    const std::size_t prev = 1 - static_cast<std::size_t>(current_);
+    std::vector<glm::vec4> a(count), b(count);
+    for (std::size_t i = 0; i < count; ++i) {
+        a[i] = texels[i].a;
+        b[i] = glm::vec4(texels[i].b, 0.0f, 0.0f);
+    }
+    glTextureSubImage2D(a_[prev].id(), 0, 0, 0, width_, height_, GL_RGBA, GL_FLOAT, a.data());
+    if (kind_ == kind::cv) glTextureSubImage2D(b_[prev].id(), 0, 0, 0, width_, height_, GL_RGBA, GL_FLOAT, b.data());
+}
+
+gl::float_image history::alpha() const {
+    gl::float_image img;
+    img.width = width_;
+    img.height = height_;
+    img.channels = 1;
+    img.pixels.assign(std::size_t(width_) * std::size_t(height_), 0.0f);
+    if (kind_ != kind::cv) return img;
+    const std::vector<texel> t = read();
+    for (std::size_t i = 0; i < t.size(); ++i) img.pixels[i] = emcv::port::emcv_cv_coefficient(t[i].a.y, t[i].a.z);
+    return img;
+}
+
+}  // namespace emcv::demo::adaptive

@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: MIT
+// emcv::demo::adaptive::history — the GPU side of the adaptive methods spvg, cv and cv-notex: their per-pixel
+// history textures (ping-pong), last frame's G-buffer for the reprojection test, the per-pixel sample-count
+// texture the burley pass reads, and the two passes around it (shaders/adaptive):
+//   adaptive-samples  before sss-burley: reproject + validate last frame's history, write N
+//   adaptive-update   after sss-burley: push this frame's (f, G) into the history
+// Layouts and choices: include/emcv/port/history.h and docs/renderer.md. Created only for an adaptive
+// method, so the other methods allocate nothing of this.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gl/handles.hpp"
+#include "gl/image_io.hpp"
+#include "gl/program.hpp"
+
+namespace emcv::demo::adaptive {
+
+enum class kind { spvg, cv, cv_notex };
+
+/// One pixel's stored history as read back: a = the first texture (spvg/cv-notex: (mean, var / target,
+/// count, 0); cv: (C_ff, C_fG, C_GG, count)), b = the second (cv: (mean_f, mean_G)), zero otherwise.
+struct texel {
+    glm::vec4 a{0.0f};
+    glm::vec2 b{0.0f};
+};
+
+class history {
+public:
+    /// Allocates the textures (cleared: every pixel starts fresh) and builds the method's two programs from
+    /// shader_dir/adaptive. Throws gl::shader_error or std::runtime_error naming the problem.
+    history(kind k, int width, int height, const gl::preprocess_options& shaders, const std::filesystem::path& shader_dir);
+
+    kind method() const noexcept { return kind_; }
+
+    /// The adaptive-samples pass. Expects what the renderer's SSS passes expect bound (frame UBO, materials,
+    /// tile list as the GL_DISPATCH_INDIRECT_BUFFER, G-buffer and motion textures at their render slots).
+    /// Binds the samples image at EMCV_ADAPTIVE_IMG_SAMPLES, where the burley pass reads N.
+    void record_samples();
+    /// The adaptive-update pass; `scattered` is the burley output (RGBA16F), bound at EMCV_RENDER_TEX_SSS_IN.
+    void record_update(GLuint scattered);
+    /// End of every frame of the method: keeps this frame's G-buffer (depth R32F, normal RGBA16F, material
+    /// R8UI) for the next reprojection and swaps the histories. A frame without SSS pass leaves the history
+    /// unknown, so the next frame starts fresh everywhere.
+    void end_frame(GLuint depth, GLuint normal, GLuint material, bool updated);
+    /// Every pixel starts fresh on the next frame (method switch, camera cut).
+    void reset();
+
+    GLuint samples_texture() const noexcept { return samples_.id(); }
+
+    /// The newest history (after the last end_frame: what the next frame reprojects from), read back.
+    std::vector<texel> read() const;
+    /// Overwrites that history (tests: a poisoned state).
+    void write_previous(const std::vector<texel>& texels);
+    /// cv: alpha = C_fG / C_GG per pixel (port's guarded coefficient); 0 for the other methods.
+    gl::float_image alpha() const;
+
+private:
+    kind kind_;
+    int width_, height_;
+    gl::program samples_program_, update_program_;
+    std::array<gl::texture_2d, 2> a_, b_;  // ping-pong: [current_] is this frame's
+    int current_ = 0;
+    gl::texture_2d samples_, prev_depth_, prev_normal_, prev_material_;
+};
+
+}  // namespace emcv::demo::adaptive

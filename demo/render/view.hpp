@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: MIT
+// Camera and light matrices of a frame, scene bounds and the view-frustum test (CPU side of the pass list).
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "scene/scene.hpp"
+
+namespace emcv::demo {
+
+struct view_matrices {
+    glm::mat4 view{1.0f};
+    glm::mat4 proj{1.0f};
+    glm::mat4 view_proj{1.0f};
+    glm::vec3 position{0.0f};
+    glm::vec3 target{0.0f};
+};
+
+/// The camera at `frame` for a width x height viewport (OpenGL clip space, right-handed, -z forward).
+view_matrices camera_matrices(const camera& c, int frame, int width, int height);
+
+struct bounding_sphere {
+    glm::vec3 centre{0.0f};
+    float radius = 0.0f;
+};
+
+/// A sphere around the object's transformed mesh (its AABB's, scaled by the largest axis of the model matrix).
+bounding_sphere object_bounds(const scene& s, const object& o);
+
+/// A sphere around every object of the scene (radius >= a small epsilon, for the shadow fits).
+bounding_sphere scene_bounds(const scene& s);
+
+/// True when the sphere intersects the frustum of view_proj (planes of Gribb & Hartmann, conservative).
+bool sphere_in_frustum(const glm::mat4& view_proj, const bounding_sphere& b);
+
+/// The view-projection of a light's shadow map: directional, orthographic around the scene bounds; spot,
+/// perspective over its outer cone out to the far side of the scene bounds. Point lights have none.
+glm::mat4 shadow_view_proj(const light& l, const bounding_sphere& scene_sphere);
+
+/// Lights that get a shadow pass: casts_shadow and not a point light (point lights never cast here: a cube
+/// map per point light is left out; pass_list documents it).
+bool light_has_shadow_pass(const light& l);
+
+/// World size of one shadow-map texel near the scene (the normal offset of the shadow test).
+float shadow_texel_world(const light& l, const bounding_sphere& scene_sphere, int resolution);
+
+}  // namespace emcv::demo

@@ -1,0 +1,23 @@
+// SPDX-License-Identifier: MIT
+// shaders/adaptive/bindings.h — binding slots of the adaptive passes (spvg, cv, cv-notex), read by the host
+// (demo/render/adaptive, C++) and the GLSL passes. They use the slots render/bindings.h leaves free (18, 19,
+// 26-31: unique across resource types, below 32) and the renderer's own slots for what they share with it
+// (G-buffer, lighting, motion, the SSS output bound at EMCV_RENDER_TEX_SSS_IN, the tile list).
+#ifndef EMCV_ADAPTIVE_BINDINGS_H
+#define EMCV_ADAPTIVE_BINDINGS_H
+
+#include "render/bindings.h"
+
+// Textures read with texelFetch: last frame's history and G-buffer (the reprojection source)
+#define EMCV_ADAPTIVE_TEX_HISTORY_PREV_A 18   // spvg, cv-notex: RGBA16F stats; cv: RGBA32F (C_ff, C_fG, C_GG, count)
+#define EMCV_ADAPTIVE_TEX_HISTORY_PREV_B 19   // cv: RG16F (mean_f, mean_G); unused otherwise
+#define EMCV_ADAPTIVE_TEX_PREV_DEPTH 26       // last frame's linear view depth (R32F)
+#define EMCV_ADAPTIVE_TEX_PREV_NORMAL 27      // last frame's world normal (RGBA16F)
+#define EMCV_ADAPTIVE_TEX_PREV_MATERIAL 28    // last frame's material index + 1 (R8UI)
+
+// Images: this frame's history (written by adaptive-samples, updated in place by adaptive-update) and N
+#define EMCV_ADAPTIVE_IMG_HISTORY_A 29
+#define EMCV_ADAPTIVE_IMG_HISTORY_B 30
+#define EMCV_ADAPTIVE_IMG_SAMPLES 31          // samples per pixel for the burley pass (R32UI)
+
+#endif  // #ifndef EMCV_ADAPTIVE_BINDINGS_H

@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: MIT
+// shaders/adaptive/samples.h — the adaptive-samples pass (body; the entry files pick the method): over the SSS
+// tiles, each SSS pixel fetches last frame's history at its reprojected position (motion vectors, point
+// sampling), keeps it only when the position is on screen and the surface is the same (material, depth,
+// normal: emcv_history_reusable) and the texel is not poisoned, writes that state (or a fresh one) into this
+// frame's history, and writes the N the burley pass takes (EMCV_ADAPTIVE_IMG_SAMPLES).
+#ifndef EMCV_ADAPTIVE_SAMPLES_H
+#define EMCV_ADAPTIVE_SAMPLES_H
+
+#include "emcv/port/sss.h"
+#include "adaptive/history_io.h"
+#include "render/tiles.h"
+
+layout(local_size_x = EMCV_RENDER_TILE_SIZE, local_size_y = EMCV_RENDER_TILE_SIZE) in;
+
+layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_MOTION)) uniform sampler2D gbuffer_motion;
+layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_HISTORY_PREV_A)) uniform sampler2D history_prev_a;
+layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_HISTORY_PREV_B)) uniform sampler2D history_prev_b;
+layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_PREV_DEPTH)) uniform sampler2D prev_depth;
+layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_PREV_NORMAL)) uniform sampler2D prev_normal;
+layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_PREV_MATERIAL)) uniform usampler2D prev_material;
+
+/// Last frame's raw history texels for pixel p, or false (disoccluded, off-screen, first frame, poisoned).
+/// The texels are copied as stored, not decoded and encoded again: a second binary16 store per frame would
+/// round twice (llvmpipe's float -> half store truncates; measured 2 ulps of drift against one rounding).
+bool emcv_adaptive_reproject(ivec2 p, uint material, out vec4 a, out vec4 b) {
+    a = vec4(0.0f);
+    b = vec4(0.0f);
+    // Motion is current - previous in pixels; the previous position of p's centre, point-sampled.
+    vec2 previous = vec2(p) + 0.5f - texelFetch(gbuffer_motion, p, 0).xy;
+    ivec2 q = ivec2(floor(previous));
+    if (!emcv_render_on_screen(q)) return false;
+    float z = emcv_render_depth(p);
+    vec3 world = emcv_render_world_position(p, z);
+    float expected_prev_depth = (frame.prev_view_proj * vec4(world, 1.0f)).w;  // clip w = view depth
+    bool same_surface = emcv_history_reusable(material, texelFetch(prev_material, q, 0).x, expected_prev_depth,
+                                              texelFetch(prev_depth, q, 0).x, texelFetch(gbuffer_normal, p, 0).xyz,
+                                              texelFetch(prev_normal, q, 0).xyz);
+    if (!same_surface) return false;
+    a = texelFetch(history_prev_a, q, 0);
+    b = texelFetch(history_prev_b, q, 0);
+    EmcvAdaptiveState kept;
+    return emcv_adaptive_decode(a, b, kept);
+}
+
+void main() {
+    ivec2 p = emcv_render_tile_pixel();
+    if (!emcv_render_on_screen(p)) return;
+    uint code = emcv_render_material_code(p);
+    if (!emcv_render_scatters(code)) {
+        // Inside an SSS tile but not scattering: no samples, and a fresh history so that nothing stale is
+        // ever reprojected from here.
+        emcv_adaptive_store(p, emcv_adaptive_init());
+        imageStore(samples_image, p, uvec4(0u));
+        return;
+    }
+    vec4 a, b;
+    EmcvAdaptiveState s = emcv_adaptive_init();
+    if (emcv_adaptive_reproject(p, code, a, b)) {
+        emcv_adaptive_decode(a, b, s);
+        emcv_adaptive_store_raw(p, a, b);
+    } else {
+        emcv_adaptive_store(p, s);
+    }
+    int n = emcv_adaptive_count(s);
+#if defined(EMCV_ADAPTIVE_CV) || defined(EMCV_ADAPTIVE_NOTEX)
+    vec3 d = emcv_sss_shape_distance(materials[code - 1u].mean_free_path.xyz, texelFetch(gbuffer_albedo, p, 0).xyz);
+    float pixels_per_mm = emcv_sss_pixels_per_mm(frame.projection.x, frame.viewport.x, emcv_render_depth(p),
+                                                 frame.camera_position.w);
+    if (emcv_history_sub_pixel(emcv_sss_widest(d), pixels_per_mm)) n = 0;
+#endif
+    imageStore(samples_image, p, uvec4(uint(n)));
+}
+
+#endif  // #ifndef EMCV_ADAPTIVE_SAMPLES_H

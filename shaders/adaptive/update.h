@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: MIT
+// shaders/adaptive/update.h — the adaptive-update pass (body; the entry files pick the method): after the
+// burley pass, each SSS pixel pushes this frame's values into its history with the port's estimators
+// (include/emcv/port/ema.h, cv.h): f = the scattered diffuse (the burley output, G itself when N was 0),
+// G = the unscattered diffuse (in-frame constant control), both as displayed gamma-space luminance.
+//   spvg      moving mean/variance of f (eta 0.2)
+//   cv        EMCM over (f, G) (eta 0.05)
+//   cv-notex  moving mean/variance of r = f - G (alpha = 1, eta 0.2)
+// A non-finite f or G is refused by the port (state unchanged); a poisoned stored state is reset, never used.
+#ifndef EMCV_ADAPTIVE_UPDATE_H
+#define EMCV_ADAPTIVE_UPDATE_H
+
+#include "adaptive/history_io.h"
+#include "render/tiles.h"
+
+layout(local_size_x = EMCV_RENDER_TILE_SIZE, local_size_y = EMCV_RENDER_TILE_SIZE) in;
+
+layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_SSS_IN)) uniform sampler2D scattered_diffuse;
+
+void main() {
+    ivec2 p = emcv_render_tile_pixel();
+    if (!emcv_render_on_screen(p) || !emcv_render_scatters(emcv_render_material_code(p))) return;
+#if defined(EMCV_ADAPTIVE_CV)
+    vec4 b = imageLoad(history_b, p);
+#else
+    vec4 b = vec4(0.0f);
+#endif
+    EmcvAdaptiveState s;
+    emcv_adaptive_decode(imageLoad(history_a, p), b, s);  // a poisoned texel decodes as a fresh state
+    float f = emcv_adaptive_tracked(p, texelFetch(scattered_diffuse, p, 0).xyz);
+    float g = emcv_adaptive_tracked(p, texelFetch(lit_diffuse, p, 0).xyz);
+#if defined(EMCV_ADAPTIVE_CV)
+    emcv_emcm2_push(s, vec2(f, g), EMCV_HISTORY_ETA_EMCM);
+#elif defined(EMCV_ADAPTIVE_NOTEX)
+    emcv_moving_stats_push(s, emcv_cv_residual(f, 1.0f, g), EMCV_HISTORY_ETA_MOVING);
+#else
+    emcv_moving_stats_push(s, f, EMCV_HISTORY_ETA_MOVING);
+#endif
+    emcv_adaptive_store(p, s);
+}
+
+#endif  // #ifndef EMCV_ADAPTIVE_UPDATE_H

@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: MIT
+// shaders/render/bindings.h — binding slots of the renderer's passes, read by the host (demo/render, C++) and
+// by the GLSL passes from this one file (the pattern of include/emcv/port/bindings.h). Numbers are unique
+// across resource types (Vulkan shares one binding space per set) and below 32 (llvmpipe's image units).
+#ifndef EMCV_RENDER_BINDINGS_H
+#define EMCV_RENDER_BINDINGS_H
+
+#define EMCV_RENDER_TILE_SIZE 8  // SSS tiles and compute workgroups are 8x8 pixels
+// SSS tile dispatches are 2-D, EMCV_RENDER_TILE_ROW workgroups per row: one row of n tiles would exceed GL's
+// guaranteed 65535 workgroups per dimension from 2048x2048 pixels on.
+#define EMCV_RENDER_TILE_ROW 1024
+
+// Buffers
+#define EMCV_RENDER_FRAME 0       // uniform block: camera, viewport, frame constants (frame.h)
+#define EMCV_RENDER_LIGHTS 1      // storage: per-light radiance at this frame, shadow matrices
+#define EMCV_RENDER_MATERIALS 2   // storage: albedo, mean free path, specular per material
+#define EMCV_RENDER_OBJECTS 3     // storage: model and normal matrices, material per object
+#define EMCV_RENDER_STATS 4       // storage: SSS pixel count, sum and max of samples (GPU reduction)
+#define EMCV_RENDER_TILES 5       // storage: indirect dispatch arguments, then the SSS tile list
+#define EMCV_RENDER_KERNELS 6     // storage: separable kernels, taps per material
+#define EMCV_RENDER_PASS 7        // uniform block: per-pass constants (separable direction)
+
+// Textures read by sampling (texelFetch or filtered)
+#define EMCV_RENDER_TEX_ALBEDO_MAP 8   // gbuffer: the object's albedo texture (white 1x1 when none)
+#define EMCV_RENDER_TEX_SHADOWS 9      // lighting: shadow maps, one array layer per casting light
+#define EMCV_RENDER_TEX_DEPTH 10       // linear view depth (R32F, world units, 0 = background)
+#define EMCV_RENDER_TEX_NORMAL 11      // world normal (RGBA16F)
+#define EMCV_RENDER_TEX_ALBEDO 12      // surface albedo with its texture (RGBA16F, linear)
+#define EMCV_RENDER_TEX_MATERIAL 13    // material index + 1 (R8UI, 0 = background)
+#define EMCV_RENDER_TEX_DIFFUSE 14     // diffuse irradiance / pi, no albedo (RGBA16F)
+#define EMCV_RENDER_TEX_SPECULAR 15    // specular radiance (RGBA16F)
+#define EMCV_RENDER_TEX_SSS_IN 16      // separable: the horizontal pass's output; composite: scattered
+#define EMCV_RENDER_TEX_MOTION 17      // motion in pixels, current - previous (RG16F)
+
+// Images written by compute passes
+#define EMCV_RENDER_IMG_DIFFUSE 20     // lighting
+#define EMCV_RENDER_IMG_SPECULAR 21    // lighting
+#define EMCV_RENDER_IMG_SSS_OUT 22     // sss-burley, sss-separable-*
+#define EMCV_RENDER_IMG_COUNT 23       // samples per pixel (R32UI)
+#define EMCV_RENDER_IMG_LINEAR 24      // composite: linear HDR
+#define EMCV_RENDER_IMG_DISPLAY 25     // composite: tonemapped, sRGB-encoded
+
+// Material kinds in materials[i].albedo.w
+#define EMCV_RENDER_MATERIAL_DIFFUSE 0
+#define EMCV_RENDER_MATERIAL_SSS 1
+
+// Light kinds in lights[i].radiance.w
+#define EMCV_RENDER_LIGHT_DIRECTIONAL 0
+#define EMCV_RENDER_LIGHT_POINT 1
+#define EMCV_RENDER_LIGHT_SPOT 2
+
+// frame.counters.w bits
+#define EMCV_RENDER_FLAG_SSS_RAN 1u         // composite reads the scattered diffuse at SSS pixels
+#define EMCV_RENDER_FLAG_APPROXIMATE_CDF 2u // Burley radii from SPVG's approximation
+
+#define EMCV_RENDER_MAX_SEPARABLE_TAPS 25
+
+// tests/render: shaders/tests/burley_radii.comp.glsl
+#define EMCV_RENDER_TEST_PARAMS 0   // uniform block
+#define EMCV_RENDER_TEST_OUTPUT 1   // storage: one radius per invocation
+
+#endif  // #ifndef EMCV_RENDER_BINDINGS_H

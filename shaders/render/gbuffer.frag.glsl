@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: MIT
+// G-buffer pass, fragment stage: linear view depth (R32F), world normal, albedo with its texture, material
+// code (index + 1; 0 stays the background's) and motion in pixels from the previous frame.
+#version 450 core
+
+#include "render/frame.h"
+
+layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_ALBEDO_MAP)) uniform sampler2D albedo_map;
+
+layout(location = 0) in vec3 v_normal;
+layout(location = 1) in vec2 v_uv;
+layout(location = 2) in float v_view_depth;
+layout(location = 3) in vec4 v_clip;
+layout(location = 4) in vec4 v_prev_clip;
+layout(location = 5) flat in uint v_material;
+
+layout(location = 0) out float out_depth;
+layout(location = 1) out vec4 out_normal;
+layout(location = 2) out vec4 out_albedo;
+layout(location = 3) out uint out_material;
+layout(location = 4) out vec2 out_motion;
+
+void main() {
+    vec3 n = normalize(v_normal);
+    if (!gl_FrontFacing) n = -n;  // open meshes (planes) seen from behind
+    out_depth = v_view_depth;
+    out_normal = vec4(n, 0.0f);
+    out_albedo = vec4(materials[v_material].albedo.xyz * texture(albedo_map, v_uv).xyz, 1.0f);
+    out_material = v_material + 1u;
+    vec2 ndc = v_clip.xy / v_clip.w;
+    vec2 prev_ndc = v_prev_clip.xy / v_prev_clip.w;
+    out_motion = (ndc - prev_ndc) * 0.5f * frame.viewport.xy;
+}

@@ -1,0 +1,22 @@
+// SPDX-License-Identifier: MIT
+// shaders/render/gbuffer_read.h — the G-buffer and lighting targets as textures read with texelFetch.
+#ifndef EMCV_RENDER_GBUFFER_READ_H
+#define EMCV_RENDER_GBUFFER_READ_H
+
+#include "render/frame.h"
+
+layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_DEPTH)) uniform sampler2D gbuffer_depth;
+layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_NORMAL)) uniform sampler2D gbuffer_normal;
+layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_ALBEDO)) uniform sampler2D gbuffer_albedo;
+layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_MATERIAL)) uniform usampler2D gbuffer_material;
+layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_DIFFUSE)) uniform sampler2D lit_diffuse;
+layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_SPECULAR)) uniform sampler2D lit_specular;
+
+bool emcv_render_on_screen(ivec2 p) {
+    return p.x >= 0 && p.y >= 0 && p.x < int(frame.viewport.x) && p.y < int(frame.viewport.y);
+}
+
+uint emcv_render_material_code(ivec2 p) { return texelFetch(gbuffer_material, p, 0).x; }
+float emcv_render_depth(ivec2 p) { return texelFetch(gbuffer_depth, p, 0).x; }
+
+#endif  // #ifndef EMCV_RENDER_GBUFFER_READ_H

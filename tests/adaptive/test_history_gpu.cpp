@@ -1,0 +1,367 @@
+// SPDX-License-Identifier: MIT
+// The adaptive passes (shaders/adaptive through demo/render/adaptive/history) on llvmpipe over a hand-made
+// 16x8 G-buffer whose every input the test sets: flat SSS pixels at depth 2, no motion, albedo 1, exposure 1.
+//   parity       each frame's stored state equals the C++ estimator (emcv::moving_stats, emcv::emcm) restored
+//                from last frame's stored state and fed the same f and G (the GPU's own values, through a probe
+//                shader calling the same port function); the sample count equals the C++ rule.
+//   disocclusion a pixel whose material, depth or normal changed, or whose motion leads off screen, restarts.
+//   poison       a NaN/Inf/negative stored state is refused and restarted, and its neighbours are untouched.
+//
+// Parity bounds (docs/porting.md): the port's estimator fields are bit-equal between CPU and GPU for equal
+// inputs and equal starting states (0 ulp on llvmpipe), so every fp32 field must be equal. A field stored in
+// binary16 passes through one rounding on each side (the GPU's image store, glm::packHalf1x16 here): both are
+// round-to-nearest of the same fp32 value, allowed to differ by one half ulp where a rounding mode or a tie
+// differs; nothing accumulates because each frame starts both sides from the GPU's stored state.
+#include <catch2/catch_test_macros.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/packing.hpp>
+
+#include <emcv/control_variate.hpp>
+#include <emcv/emcm.hpp>
+#include <emcv/moving_stats.hpp>
+#include <emcv/port/history.h>
+#include <emcv/sample_count.hpp>
+
+#include "../gpu/gl_test_support.hpp"
+#include "gl/debug.hpp"
+#include "gl/handles.hpp"
+#include "gl/program.hpp"
+#include "render/adaptive/history.hpp"
+#include "render/gpu_types.hpp"
+
+namespace fs = std::filesystem;
+using emcv::demo::adaptive::history;
+using emcv::demo::adaptive::kind;
+using emcv::demo::adaptive::texel;
+
+namespace {
+
+constexpr int width = 16, height = 8;  // two 8x8 SSS tiles
+constexpr std::size_t pixels = std::size_t(width) * height;
+const fs::path source_dir = EMCV_SOURCE_DIR;
+
+// Binding slots of shaders/render/bindings.h (the history's passes read them like the renderer's).
+constexpr GLuint frame_slot = 0, materials_slot = 2, stats_slot = 4, tiles_slot = 5;
+constexpr GLuint tex_depth = 10, tex_normal = 11, tex_albedo = 12, tex_material = 13, tex_diffuse = 14, tex_motion = 17;
+
+emcv::gl::preprocess_options shader_options() {
+    emcv::gl::preprocess_options o;
+    o.include_dirs = {source_dir / "shaders", source_dir / "include"};
+    return o;
+}
+
+emcv::gl::texture_2d make_texture(GLenum format) {
+    emcv::gl::texture_2d t = emcv::gl::texture_2d::create();
+    glTextureStorage2D(t.id(), 1, format, width, height);
+    glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return t;
+}
+
+float half(float x) { return glm::unpackHalf1x16(glm::packHalf1x16(x)); }
+
+/// Distance in binary16 ulps (both values representable in half).
+int half_ulps(float a, float b) {
+    const int ia = glm::packHalf1x16(a), ib = glm::packHalf1x16(b);
+    return std::abs(ia - ib);
+}
+
+/// The hand-made frame: G-buffer, lighting, scattered output, the renderer's blocks, the probe.
+struct harness {
+    emcv::gl::texture_2d depth = make_texture(GL_R32F), normal = make_texture(GL_RGBA16F),
+                         albedo = make_texture(GL_RGBA16F), material = make_texture(GL_R8UI),
+                         motion = make_texture(GL_RG16F), diffuse = make_texture(GL_RGBA16F),
+                         scattered = make_texture(GL_RGBA16F);
+    emcv::gl::buffer frame_ubo = emcv::gl::buffer::create(), materials = emcv::gl::buffer::create(),
+                     stats = emcv::gl::buffer::create(), tiles = emcv::gl::buffer::create();
+    emcv::gl::program probe = emcv::gl::program::compute(
+        source_dir / "shaders/adaptive/tests/gamma_probe.comp.glsl", shader_options());
+
+    std::vector<float> depths = std::vector<float>(pixels, 2.0f);
+    std::vector<std::uint8_t> codes = std::vector<std::uint8_t>(pixels, 1);
+    std::vector<glm::vec4> normals = std::vector<glm::vec4>(pixels, glm::vec4(0, 0, 1, 0));
+    std::vector<glm::vec2> motions = std::vector<glm::vec2>(pixels, glm::vec2(0.0f));
+
+    harness() {
+        emcv::demo::gpu::frame_block f{};
+        f.view = glm::mat4(1.0f);
+        f.proj = glm::perspective(glm::radians(60.0f), float(width) / float(height), 0.1f, 100.0f);
+        f.view_proj = f.proj;
+        f.prev_view_proj = f.proj;  // clip w = view depth: the expected previous depth of a static point
+        f.inv_view = glm::mat4(1.0f);
+        f.camera_position = glm::vec4(0, 0, 0, 1);
+        f.viewport = glm::vec4(width, height, 1.0f / width, 1.0f / height);
+        f.projection = glm::vec4(f.proj[0][0], f.proj[1][1], 0.1f, 100.0f);
+        f.background = glm::vec4(0, 0, 0, 1.0f);  // exposure 1
+        f.sss = glm::ivec4(0, 1, 1, 0);
+        glNamedBufferStorage(frame_ubo.id(), sizeof f, &f, 0);
+        emcv::demo::gpu::material_block m{};
+        m.albedo = glm::vec4(1, 1, 1, 1);  // kind 1 = SSS
+        m.mean_free_path = glm::vec4(1, 1, 1, 0);
+        glNamedBufferStorage(materials.id(), sizeof m, &m, 0);
+        const std::uint32_t zeros[4] = {0, 0, 0, 0};
+        glNamedBufferStorage(stats.id(), sizeof zeros, zeros, 0);
+        // Indirect dispatch (2, 1, 1), tile count 2 (the header's w), then the two tiles (x | y << 16).
+        const std::uint32_t tile_list[6] = {2, 1, 1, 2, 0u | (0u << 16), 1u | (0u << 16)};
+        glNamedBufferStorage(tiles.id(), sizeof tile_list, tile_list, 0);
+        const std::vector<glm::vec4> ones(pixels, glm::vec4(1.0f));
+        glTextureSubImage2D(albedo.id(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, ones.data());
+        upload_geometry();
+    }
+
+    void upload_geometry() {
+        glTextureSubImage2D(depth.id(), 0, 0, 0, width, height, GL_RED, GL_FLOAT, depths.data());
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        glTextureSubImage2D(material.id(), 0, 0, 0, width, height, GL_RED_INTEGER, GL_UNSIGNED_BYTE, codes.data());
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        glTextureSubImage2D(normal.id(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, normals.data());
+        glTextureSubImage2D(motion.id(), 0, 0, 0, width, height, GL_RG, GL_FLOAT, motions.data());
+    }
+
+    /// Grey levels (representable in binary16, so the RGBA16F upload is exact) of G and f per pixel.
+    void set_light(const std::vector<float>& g, const std::vector<float>& f) {
+        std::vector<glm::vec4> gd(pixels), fd(pixels);
+        for (std::size_t i = 0; i < pixels; ++i) {
+            gd[i] = glm::vec4(glm::vec3(g[i]), 1.0f);
+            fd[i] = glm::vec4(glm::vec3(f[i]), 1.0f);
+        }
+        glTextureSubImage2D(diffuse.id(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, gd.data());
+        glTextureSubImage2D(scattered.id(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, fd.data());
+    }
+
+    /// The GPU's tracked value (emcv_gamma_luminance) of each grey level.
+    std::vector<float> tracked(const std::vector<float>& grey) {
+        std::vector<glm::vec4> in(grey.size());
+        for (std::size_t i = 0; i < grey.size(); ++i) in[i] = glm::vec4(glm::vec3(grey[i]), 1.0f);
+        emcv::gl::buffer a = emcv::gl::buffer::create(), b = emcv::gl::buffer::create();
+        glNamedBufferStorage(a.id(), static_cast<GLsizeiptr>(in.size() * sizeof(glm::vec4)), in.data(), 0);
+        glNamedBufferStorage(b.id(), static_cast<GLsizeiptr>(in.size() * sizeof(float)), nullptr, GL_DYNAMIC_STORAGE_BIT);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, a.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, b.id());
+        probe.use();
+        glDispatchCompute(static_cast<GLuint>((in.size() + 63) / 64), 1, 1);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        std::vector<float> out(in.size());
+        glGetNamedBufferSubData(b.id(), 0, static_cast<GLsizeiptr>(out.size() * sizeof(float)), out.data());
+        return out;
+    }
+
+    /// One frame of the adaptive passes, as the renderer records them around its burley pass.
+    void frame(history& h) {
+        glBindBufferBase(GL_UNIFORM_BUFFER, frame_slot, frame_ubo.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, materials_slot, materials.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, stats_slot, stats.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, tiles_slot, tiles.id());
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tiles.id());
+        glBindTextureUnit(tex_depth, depth.id());
+        glBindTextureUnit(tex_normal, normal.id());
+        glBindTextureUnit(tex_albedo, albedo.id());
+        glBindTextureUnit(tex_material, material.id());
+        glBindTextureUnit(tex_motion, motion.id());
+        glBindTextureUnit(tex_diffuse, diffuse.id());
+        h.record_samples();
+        h.record_update(scattered.id());
+        h.end_frame(depth.id(), normal.id(), material.id(), true);
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    }
+
+    std::vector<std::uint32_t> counts(const history& h) const {
+        std::vector<std::uint32_t> n(pixels);
+        glGetTextureImage(h.samples_texture(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                          static_cast<GLsizei>(n.size() * sizeof(std::uint32_t)), n.data());
+        return n;
+    }
+};
+
+/// Per pixel and frame: a light that switches (x0.25 at frame 6) under a per-pixel, per-frame noise on f, so
+/// every estimator field moves. Grey levels on a 1/1024 grid (exact in binary16).
+void light_at(int frame, std::vector<float>& g, std::vector<float>& f) {
+    g.resize(pixels);
+    f.resize(pixels);
+    for (std::size_t i = 0; i < pixels; ++i) {
+        const float level = frame < 6 ? 1.0f : 0.25f;
+        const float base = (256.0f + 4.0f * float(i % 32)) / 1024.0f;
+        const int noise = int((i * 7919u + std::size_t(frame) * 104729u) % 41u) - 20;
+        g[i] = std::round(level * base * 1024.0f) / 1024.0f;
+        f[i] = std::round(level * (0.9f * base + float(noise) / 1024.0f) * 1024.0f) / 1024.0f;
+    }
+}
+
+/// The C++ count rule of include/emcv/port/history.h, written with the library's functions.
+int cpp_count(kind k, std::uint64_t count, float variance) {
+    if (count < 2) return EMCV_HISTORY_N_MAX;
+    if (k != kind::spvg && variance == 0.0f) return 0;
+    return emcv::sample_count(variance, EMCV_HISTORY_TARGET, k == kind::spvg ? EMCV_HISTORY_SPVG_N_MIN : 8,
+                              EMCV_HISTORY_N_MAX);
+}
+
+std::uint32_t bits(float x) {
+    std::uint32_t b;
+    std::memcpy(&b, &x, sizeof b);
+    return b;
+}
+
+}  // namespace
+
+TEST_CASE("the GPU history equals the C++ estimators fed the same per-pixel values, frame by frame") {
+    emcv::gl::context ctx = emcv::test::context_or_skip();
+    emcv::gl::debug_messenger messenger;
+    harness hx;
+    for (const kind k : {kind::spvg, kind::cv, kind::cv_notex}) {
+        INFO("method " << (k == kind::spvg ? "spvg" : k == kind::cv ? "cv" : "cv-notex"));
+        history h(k, width, height, shader_options(), source_dir / "shaders");
+        std::vector<texel> previous(pixels);  // fresh: all zero
+        std::vector<float> g, f;
+        int compared = 0;
+        for (int frame = 0; frame < 12; ++frame) {
+            light_at(frame, g, f);
+            hx.set_light(g, f);
+            const std::vector<float> gt = hx.tracked(g), ft = hx.tracked(f);
+            hx.frame(h);
+            const std::vector<texel> now = h.read();
+            const std::vector<std::uint32_t> n = hx.counts(h);
+            for (std::size_t i = 0; i < pixels; ++i) {
+                INFO("frame " << frame << " pixel " << i);
+                const texel& was = previous[i];
+                if (k == kind::cv) {
+                    // Restore the C++ EMCM from the stored state (the GPU's decode), push, compare.
+                    emcv::emcm<float, 2>::state_type s{};
+                    s.count = static_cast<std::uint64_t>(was.a.w);
+                    s.total_weight = s.count > 0 ? 1.0f : 0.0f;
+                    s.mean = {was.b.x, was.b.y};
+                    s.covariance = {was.a.x, was.a.y, was.a.z};
+                    emcv::emcm<float, 2> cpp(EMCV_HISTORY_ETA_EMCM, s);
+                    CHECK(cpp_count(k, cpp.count(), emcv::cv_optimal_residual_variance(cpp)) == int(n[i]));
+                    cpp.push({ft[i], gt[i]});
+                    CHECK(bits(now[i].a.x) == bits(cpp.variance(0)));
+                    CHECK(bits(now[i].a.y) == bits(cpp.covariance(0, 1)));
+                    CHECK(bits(now[i].a.z) == bits(cpp.variance(1)));
+                    CHECK(now[i].a.w == float(cpp.count()));
+                    CHECK(half_ulps(now[i].b.x, half(cpp.mean(0))) <= 1);
+                    CHECK(half_ulps(now[i].b.y, half(cpp.mean(1))) <= 1);
+                } else {
+                    emcv::moving_stats<float>::state_type s{};
+                    s.count = static_cast<std::uint64_t>(was.a.z);
+                    s.total_weight = s.count > 0 ? 1.0f : 0.0f;
+                    s.mean = {was.a.x};
+                    s.covariance = {was.a.y * EMCV_HISTORY_TARGET};
+                    emcv::moving_stats<float> cpp(EMCV_HISTORY_ETA_MOVING, s);
+                    CHECK(cpp_count(k, cpp.count(), cpp.variance()) == int(n[i]));
+                    cpp.push(k == kind::spvg ? ft[i] : emcv::cv_residual(ft[i], 1.0f, gt[i]));
+                    CHECK(half_ulps(now[i].a.x, half(cpp.mean())) <= 1);
+                    INFO("stored var / target: GPU " << now[i].a.y << ", C++ " << cpp.variance() / EMCV_HISTORY_TARGET);
+                    CHECK(half_ulps(now[i].a.y, half(cpp.variance() / EMCV_HISTORY_TARGET)) <= 1);
+                    CHECK(now[i].a.z == float(cpp.count()));
+                }
+                ++compared;
+            }
+            previous = now;
+        }
+        CHECK(compared == 12 * int(pixels));
+        CHECK((k == kind::cv ? previous[5].a.w : previous[5].a.z) == 12.0f);  // every frame was pushed
+    }
+    CHECK(messenger.error_count() == 0);
+}
+
+TEST_CASE("disocclusion and off-screen motion restart the history; the rest keeps it") {
+    emcv::gl::context ctx = emcv::test::context_or_skip();
+    emcv::gl::debug_messenger messenger;
+    harness hx;
+    history h(kind::cv, width, height, shader_options(), source_dir / "shaders");
+    std::vector<float> g, f;
+    for (int frame = 0; frame < 4; ++frame) {
+        light_at(frame, g, f);
+        hx.set_light(g, f);
+        hx.frame(h);
+    }
+    REQUIRE(h.read()[0].a.w == 4.0f);
+    // Pixel 1: another material; 2: 20% deeper (a surface behind); 3: normal turned 60 degrees; 4: motion from
+    // off screen (came in from the left edge); 5: moved by one pixel from pixel 6 (reprojected, kept).
+    hx.codes[1] = 2;  // a second material code: the material table has one entry, so keep it scattering below
+    hx.depths[2] = 2.4f;
+    hx.normals[3] = glm::vec4(std::sin(1.047f), 0.0f, std::cos(1.047f), 0.0f);
+    hx.motions[4] = glm::vec2(8.0f, 0.0f);
+    hx.motions[5] = glm::vec2(-1.0f, 0.0f);
+    // Material code 2 must scatter too (else the pass skips the pixel): give the table a second SSS entry.
+    emcv::demo::gpu::material_block m[2]{};
+    m[0].albedo = m[1].albedo = glm::vec4(1, 1, 1, 1);
+    m[0].mean_free_path = m[1].mean_free_path = glm::vec4(1, 1, 1, 0);  // kernels of many pixels: not sub-pixel
+    hx.materials = emcv::gl::buffer::create();
+    glNamedBufferStorage(hx.materials.id(), sizeof m, m, 0);
+    hx.upload_geometry();
+    light_at(4, g, f);
+    hx.set_light(g, f);
+    hx.frame(h);
+    const std::vector<texel> t = h.read();
+    const std::vector<std::uint32_t> n = hx.counts(h);
+    for (std::size_t i : {std::size_t(1), std::size_t(2), std::size_t(3), std::size_t(4)}) {
+        INFO("pixel " << i);
+        CHECK(t[i].a.w == 1.0f);  // restarted: one frame pushed
+        CHECK(n[i] == EMCV_HISTORY_N_MAX);
+    }
+    for (std::size_t i : {std::size_t(0), std::size_t(5), std::size_t(6), std::size_t(20)}) {
+        INFO("pixel " << i);
+        CHECK(t[i].a.w == 5.0f);  // kept
+    }
+    CHECK(messenger.error_count() == 0);
+}
+
+TEST_CASE("a poisoned history texel (NaN, Inf, negative variance) is reset and never spreads") {
+    emcv::gl::context ctx = emcv::test::context_or_skip();
+    emcv::gl::debug_messenger messenger;
+    for (const kind k : {kind::spvg, kind::cv}) {
+        INFO("method " << (k == kind::spvg ? "spvg" : "cv"));
+        harness hx;
+        history clean(k, width, height, shader_options(), source_dir / "shaders");
+        history poisoned(k, width, height, shader_options(), source_dir / "shaders");
+        std::vector<float> g, f;
+        for (int frame = 0; frame < 4; ++frame) {
+            light_at(frame, g, f);
+            hx.set_light(g, f);
+            hx.frame(clean);
+            hx.frame(poisoned);
+        }
+        std::vector<texel> bad = poisoned.read();
+        const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+        bad[9].a.x = nan;
+        bad[10].a.y = inf;
+        if (k == kind::cv) bad[11].b.x = -inf;
+        else bad[11].a.y = -1.0f;  // a negative variance
+        // The history keeps what read() returned as the state the next frame reprojects from.
+        poisoned.write_previous(bad);
+        light_at(4, g, f);
+        hx.set_light(g, f);
+        hx.frame(clean);
+        hx.frame(poisoned);
+        const std::vector<texel> c = clean.read(), p = poisoned.read();
+        const std::vector<std::uint32_t> nc = hx.counts(clean);
+        const std::vector<std::uint32_t> np = hx.counts(poisoned);
+        for (std::size_t i = 0; i < pixels; ++i) {
+            INFO("pixel " << i);
+            CHECK(std::isfinite(p[i].a.x));
+            CHECK(std::isfinite(p[i].a.y));
+            CHECK(std::isfinite(p[i].a.z));
+            CHECK(std::isfinite(p[i].b.x));
+            const bool was_poisoned = i >= 9 && i <= 11;
+            const float count = k == kind::cv ? p[i].a.w : p[i].a.z;
+            if (was_poisoned) {
+                CHECK(count == 1.0f);
+                CHECK(np[i] == EMCV_HISTORY_N_MAX);
+            } else {
+                CHECK(bits(p[i].a.x) == bits(c[i].a.x));  // untouched: as in the clean run
+                CHECK(bits(p[i].a.y) == bits(c[i].a.y));
+                CHECK(bits(p[i].b.x) == bits(c[i].b.x));
+                CHECK(np[i] == nc[i]);
+            }
+        }
+    }
+    CHECK(messenger.error_count() == 0);
+}

@@ -1,0 +1,93 @@
+// SPDX-License-Identifier: MIT
+// The frame's pass list follows the scene: shadow passes only for lights that cast, SSS passes only when an
+// SSS object can be visible and the method scatters; and the renderer records exactly that list.
+#include <catch2/catch_test_macros.hpp>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "../gpu/gl_test_support.hpp"
+#include "gl/debug.hpp"
+#include "render/renderer.hpp"
+#include "render_test_support.hpp"
+#include "scene/load.hpp"
+
+using namespace emcv::demo;
+
+namespace {
+
+bool has_pass(const std::vector<std::string>& passes, const std::string& prefix) {
+    return std::any_of(passes.begin(), passes.end(), [&](const std::string& p) { return p.rfind(prefix, 0) == 0; });
+}
+
+const method burley16{method::kind::burley, 16};
+
+}  // namespace
+
+TEST_CASE("pass lists of scenes built in code") {
+    const scene sphere = emcv::test::sphere_on_floor();
+    CHECK(pass_list(sphere, burley16, 0, 64, 48) ==
+          std::vector<std::string>{"gbuffer", "shadow:key", "shadow:spot", "lighting", "sss-tiles", "sss-burley", "composite"});
+    CHECK(pass_list(sphere, method{method::kind::separable, 17}, 0, 64, 48) ==
+          std::vector<std::string>{"gbuffer", "shadow:key", "shadow:spot", "lighting", "sss-tiles", "sss-separable-h",
+                                   "sss-separable-v", "composite"});
+    // diffuse never scatters.
+    CHECK(pass_list(sphere, method{method::kind::diffuse, 0}, 0, 64, 48) ==
+          std::vector<std::string>{"gbuffer", "shadow:key", "shadow:spot", "lighting", "composite"});
+    // Nothing scatters, nothing casts: neither an SSS nor a shadow pass.
+    CHECK(pass_list(emcv::test::no_sss(), burley16, 0, 64, 48) ==
+          std::vector<std::string>{"gbuffer", "lighting", "composite"});
+    // An SSS material whose only object lies outside the view frustum: no SSS pass.
+    CHECK_FALSE(sss_possibly_visible(emcv::test::sss_outside_view(), 0, 64, 48));
+    CHECK_FALSE(has_pass(pass_list(emcv::test::sss_outside_view(), burley16, 0, 64, 48), "sss-"));
+    // A point light marked casts_shadow gets no shadow pass (point lights do not cast in this renderer).
+    scene point = emcv::test::sphere_on_floor();
+    point.lights[1].type = light::kind::point;
+    CHECK_FALSE(has_pass(pass_list(point, burley16, 0, 64, 48), "shadow:spot"));
+}
+
+TEST_CASE("pass list of each built-in scene") {
+    const std::vector<std::string> names = builtin_scene_names();
+    REQUIRE(std::find(names.begin(), names.end(), "no-sss") != names.end());
+    for (const std::string& name : names) {
+        INFO("scene " << name);
+        const scene s = load_scene_argument(name);
+        const std::vector<std::string> passes = pass_list(s, burley16, 0, 128, 96);
+        CHECK(passes.front() == "gbuffer");
+        CHECK(passes.back() == "composite");
+        const bool casters = std::any_of(s.lights.begin(), s.lights.end(), [](const light& l) {
+            return l.casts_shadow && l.type != light::kind::point;
+        });
+        CHECK(has_pass(passes, "shadow:") == casters);
+        CHECK(has_pass(passes, "sss-") == s.has_sss_material());  // every built-in SSS object is in view
+        if (name == "no-sss") {
+            CHECK(passes == std::vector<std::string>{"gbuffer", "lighting", "composite"});
+        }
+    }
+}
+
+TEST_CASE("the renderer records exactly the pass list") {
+    emcv::gl::context ctx = emcv::test::context_or_skip();
+    emcv::gl::debug_messenger messenger;
+    std::vector<scene> scenes{emcv::test::sphere_on_floor(), emcv::test::no_sss(), emcv::test::sss_outside_view()};
+    for (const std::string& name : builtin_scene_names()) scenes.push_back(load_scene_argument(name));
+    for (const scene& s : scenes) {
+        for (const method& m : all_methods()) {
+            INFO("scene " << s.name << ", method " << m.name());
+            render_options options;
+            options.width = 32;
+            options.height = 24;
+            renderer r(s, m, options);
+            const frame_stats& stats = r.render(0);
+            std::vector<std::string> recorded;
+            for (const pass_time& p : stats.passes) recorded.push_back(p.name);
+            CHECK(recorded == pass_list(s, m, 0, 32, 24));
+            if (!has_pass(recorded, "sss-")) {
+                CHECK(stats.sss_ms == 0.0);
+                CHECK(stats.sss_pixels == 0);
+            }
+        }
+    }
+    CHECK(messenger.error_count() == 0);
+}

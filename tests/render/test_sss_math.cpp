@@ -1,0 +1,120 @@
+// SPDX-License-Identifier: MIT
+// The renderer's per-pixel SSS maths (include/emcv/port/sss.h) and the separable kernel, on the CPU.
+#include <catch2/catch_test_macros.hpp>
+
+#include <cmath>
+#include <cstdint>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <emcv/port/hash.h>
+#include <emcv/port/sss.h>
+
+#include "render/separable_kernel.hpp"
+
+using namespace emcv::port;
+
+TEST_CASE("pixelsPerMm maps a world offset to the pixels the projection moves it by") {
+    // A horizontal offset of delta world units at view depth z moves 0.5 P00 W delta / z pixels
+    // (reference/sss.md 5); checked against glm's projection of both points.
+    const int width = 320;
+    const int height = 200;
+    const float mm_per_unit = 25.0f;
+    const glm::mat4 proj = glm::perspective(glm::radians(40.0f), float(width) / float(height), 0.1f, 100.0f);
+    for (float z : {0.5f, 2.0f, 9.0f}) {
+        const float delta = 0.01f * z;
+        const glm::vec4 a = proj * glm::vec4(0.1f, 0.05f, -z, 1.0f);
+        const glm::vec4 b = proj * glm::vec4(0.1f + delta, 0.05f, -z, 1.0f);
+        const float pixels = (b.x / b.w - a.x / a.w) * 0.5f * float(width);
+        const float predicted = emcv_sss_pixels_per_mm(proj[0][0], float(width), z, mm_per_unit) * delta * mm_per_unit;
+        INFO("z " << z << ": projected " << pixels << " px, predicted " << predicted);
+        CHECK(std::abs(pixels - predicted) <= 1e-4f * pixels);
+    }
+}
+
+TEST_CASE("the search-light scaling fit and the shape distance") {
+    CHECK(emcv_sss_scaling(0.33f) == 3.5f);
+    CHECK(std::abs(emcv_sss_scaling(0.83f) - 9.75f) < 1e-5f);  // 3.5 + 100 * 0.5^4
+    const vec3 d = emcv_sss_shape_distance(vec3(3.0f, 1.0f, 0.5f), vec3(0.83f, 0.33f, 0.33f));
+    CHECK(std::abs(d.x - 3.0f / 9.75f) < 1e-6f);
+    CHECK(d.y == 1.0f / 3.5f);
+    CHECK(emcv_sss_widest(d) == d.x);
+}
+
+TEST_CASE("the sampled channel's weight is 1 / (2 pi) at every radius without a depth step") {
+    // w = r R(r) / p(r) = [(e^{-r/d} + e^{-r/3d}) / (8 pi d)] / [(e^{-r/d} + e^{-r/3d}) / (4 d)] = 1 / (2 pi):
+    // importance sampling the widest channel makes its own weight constant; the other channels are not.
+    const vec3 d(0.4f, 1.2f, 0.3f);
+    const float dmax = emcv_sss_widest(d);
+    for (float u : {0.01f, 0.3f, 0.9f, 0.999f}) {
+        const float r = emcv_sss_sample_radius(u, dmax, false);
+        const vec3 w = emcv_sss_weight(r, emcv_sss_depth_aware_radius(r, 0.0f), d, dmax);
+        CHECK(std::abs(w.y * 2.0f * 3.14159265f - 1.0f) < 1e-5f);
+        CHECK(w.x != w.y);
+        // A depth step only lowers the weight (the profile decreases with r_e >= r).
+        const vec3 stepped = emcv_sss_weight(r, emcv_sss_depth_aware_radius(r, 2.0f), d, dmax);
+        CHECK(stepped.x < w.x);
+        CHECK(stepped.y < w.y);
+    }
+}
+
+TEST_CASE("sample offsets have length r pixelsPerMm and angle 2 pi u_theta and rotated R2 points stay in the unit square") {
+    const vec2 o = emcv_sss_offset_pixels(2.0f, 0.25f, 3.0f);
+    CHECK(std::abs(o.x) < 1e-5f);
+    CHECK(std::abs(o.y - 6.0f) < 1e-5f);
+    for (std::uint32_t pixel = 0; pixel < 200; ++pixel) {
+        const vec2 rotation = emcv_sss_rotation(pixel, 7u, 3u, 11u);
+        for (std::uint32_t i = 0; i < 64; ++i) {
+            const vec2 u = emcv_sss_sample_uv(i, rotation);
+            REQUIRE(u.x >= 0.0f);
+            REQUIRE(u.x < 1.0f);
+            REQUIRE(u.y >= 0.0f);
+            REQUIRE(u.y < 1.0f);
+        }
+    }
+}
+
+TEST_CASE("the Burley marginal's tail matches Monte Carlo") {
+    // X = r cos(theta), r from the exact inverse CDF, theta uniform: P(X > t) estimated from n samples has
+    // standard deviation sqrt(p (1 - p) / n); the quadrature must lie within 4 of them (+ 1e-4 quadrature error).
+    const double d = 0.8;
+    const int n = 400000;
+    for (double t : {0.0, 0.3, 1.0, 4.0}) {
+        int above = 0;
+        for (int i = 0; i < n; ++i) {
+            const float u = emcv_uint_to_unit_float(emcv_pcg(std::uint32_t(2 * i) ^ 0x9e3779b9u));
+            const float v = emcv_uint_to_unit_float(emcv_pcg(std::uint32_t(2 * i + 1) ^ 0x85ebca6bu));
+            const double r = emcv_burley_sample_exact(u, float(d));
+            above += r * std::cos(2.0 * 3.14159265358979 * v) > t ? 1 : 0;
+        }
+        const double p_mc = double(above) / n;
+        const double p = emcv::demo::burley_marginal_tail(t, d);
+        INFO("t " << t << ": quadrature " << p << ", Monte Carlo " << p_mc);
+        CHECK(std::abs(p - p_mc) < 4.0 * std::sqrt(p * (1.0 - p) / n) + 1e-4);
+    }
+    CHECK(std::abs(emcv::demo::burley_marginal_tail(0.0, d) - 0.5) < 1e-6);
+}
+
+TEST_CASE("separable kernels put the centre first with symmetric offsets and unit channel sums and spread wider channels more") {
+    for (int taps : {11, 17, 25}) {
+        const emcv::demo::separable_kernel k = emcv::demo::make_separable_kernel(glm::vec3(0.9f, 0.3f, 0.2f), taps);
+        REQUIRE(k.taps.size() == std::size_t(taps));
+        CHECK(k.taps[0].w == 0.0f);
+        glm::vec3 sum(0.0f);
+        float offset_sum = 0.0f;
+        float max_offset = 0.0f;
+        for (const glm::vec4& t : k.taps) {
+            sum += glm::vec3(t);
+            offset_sum += t.w;
+            max_offset = std::max(max_offset, std::abs(t.w));
+        }
+        CHECK(std::abs(sum.x - 1.0f) < 1e-5f);
+        CHECK(std::abs(sum.y - 1.0f) < 1e-5f);
+        CHECK(std::abs(sum.z - 1.0f) < 1e-5f);
+        CHECK(std::abs(offset_sum) < 1e-4f * max_offset);
+        CHECK(max_offset == k.half_width_mm);
+        // The widest channel (red) keeps the least weight at the centre.
+        CHECK(k.taps[0].x < k.taps[0].y);
+        CHECK(k.taps[0].y < k.taps[0].z);
+    }
+}
