@@ -25,7 +25,7 @@
 // sanitizers. Defined here because this file is linked into every such program.
 extern "C" const char* __lsan_default_suppressions() {
     return "leak:libEGL_mesa\nleak:libgallium\nleak:libglapi\nleak:swrast_dri\nleak:libLLVM\nleak:libGLX_mesa\n"
-           "leak:libOSMesa\n";
+           "leak:libOSMesa\nleak:libglfw\nleak:libX11\n";
 }
 
 namespace emcv::gl {

@@ -279,7 +279,7 @@ TEST_CASE("the window (--window) runs a few frames under Xvfb and its keys act",
     // LeakSanitizer is off for this one run (ASan stays on): at exit GLFW's X11/GLX path unloads Mesa's GLX
     // driver, so its leftover allocations have stacks in an unloaded module that no suppression can name
     // (seen under the sanitize preset: 240 bytes in 3 allocations, "<unknown module>"). The headless runs keep
-    // LSan on, with emcv-demo's suppressions for Mesa's loaded libraries (demo/app/lsan_suppressions.cpp).
+    // LSan on, with emcv-demo's suppressions for Mesa's loaded libraries (demo/gl/context.cpp).
     const emcv_test::command_result r = emcv_test::run_command(
         "ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 EMCV_DEMO_KEYS=M,H,1,H,N xvfb-run -a -s '-screen 0 320x240x24' '" + std::string(EMCV_DEMO_EXE) +
         "' --window --scene '" + data_dir + "/tiny.json' --size 64x64 --frames 7 --method burley-4,diffuse");
