@@ -55,6 +55,8 @@ EMCV_FN bool emcv_history_decode_stats(EMCV_IN(vec4) texel, EMCV_OUT(EmcvMovingS
     return true;
 }
 
+/// SPVG / cv-notex history texel: (mean, variance / EMCV_HISTORY_TARGET, count capped at
+/// EMCV_HISTORY_MAX_COUNT, 0), the inverse of emcv_history_decode_stats.
 EMCV_FN vec4 emcv_history_encode_stats(EMCV_IN(EmcvMovingStats) s) {
     return vec4(s.mean, s.variance / EMCV_HISTORY_TARGET, float(min(s.count, EMCV_HISTORY_MAX_COUNT)), 0.0f);
 }
@@ -75,10 +77,12 @@ EMCV_FN bool emcv_history_decode_emcm2(EMCV_IN(vec4) cov_count, EMCV_IN(vec2) me
     return true;
 }
 
+/// cv history, first texture: (C_ff, C_fG, C_GG, count capped at EMCV_HISTORY_MAX_COUNT).
 EMCV_FN vec4 emcv_history_encode_emcm2_cov(EMCV_IN(EmcvEmcm2) s) {
     return vec4(s.cov.x, s.cov.y, s.cov.z, float(min(s.count, EMCV_HISTORY_MAX_COUNT)));
 }
 
+/// cv history, second texture: the means (mu_f, mu_G).
 EMCV_FN vec2 emcv_history_encode_emcm2_means(EMCV_IN(EmcvEmcm2) s) { return s.mean; }
 
 /// Reprojection test (SPVG's reset on failed reprojection): the previous frame's pixel under the reprojected

@@ -37,6 +37,7 @@ EMCV_FN float emcv_display_channel(float x, int tonemap) {
     return emcv_srgb_encode(min(t, 1.0f));
 }
 
+/// Display encoding of a linear colour: emcv_display_channel per channel (tonemap 0: ACES fit, else Reinhard).
 EMCV_FN vec3 emcv_display_encode(vec3 x, int tonemap) {
     return vec3(emcv_display_channel(x.x, tonemap), emcv_display_channel(x.y, tonemap),
                 emcv_display_channel(x.z, tonemap));
