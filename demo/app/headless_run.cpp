@@ -133,7 +133,7 @@ run_result run_headless(const scene& s, const options& o, int frames) {
                 row.temporal_error = temporal_error(view_of(display), view_of(*run.previous_display),
                                                     view_of(ref_display), view_of(*ref_previous));
 
-            if (o.out) {
+            if (o.out && !o.no_frames) {
                 const fs::path dir = *o.out / run.m.name();
                 pending.push_back({dir / frame_file(frame, "png"), display});
                 if (o.exr) pending.push_back({dir / frame_file(frame, "exr"), linear});
@@ -144,7 +144,8 @@ run_result run_headless(const scene& s, const options& o, int frames) {
             // Folders appear with the first frame that is complete: a run that fails earlier leaves nothing.
             if (frame == 0) {
                 make_output_directory(*o.out);
-                for (const method_run& run : runs) make_output_directory(*o.out / run.m.name());
+                if (!o.no_frames)
+                    for (const method_run& run : runs) make_output_directory(*o.out / run.m.name());
             }
             for (const auto& [path, image] : pending) write_frame(path, image);
         }

@@ -72,6 +72,7 @@ std::string usage_text() {
            "  --out DIR           write frames (PNG), metrics.csv and metrics.json under DIR (default: none)\n"
            "  --seed S            random seed, 0..4294967295 (default 1)\n"
            "  --exr               also write linear HDR frames as EXR\n"
+           "  --no-frames         with --out: write metrics.csv/json only, no frames (large benchmark runs)\n"
            "  --approximate-cdf   burley-N draws radii with SPVG's inverse-CDF fit instead of the exact inverse\n"
            "  --window            show the renderer in a window (keys: see docs/demo.md); --frames ends it\n"
            "  --list-scenes       list the built-in scenes with their descriptions\n"
@@ -103,6 +104,7 @@ options parse_options(const std::vector<std::string>& args) {
         };
         if (flag == "--help" || flag == "-h") no_value(o.help);
         else if (flag == "--exr") no_value(o.exr);
+        else if (flag == "--no-frames") no_value(o.no_frames);
         else if (flag == "--window") no_value(o.window);
         else if (flag == "--approximate-cdf") no_value(o.approximate_cdf);
         else if (flag == "--list-scenes") no_value(o.list_scenes);
@@ -152,6 +154,8 @@ options parse_options(const std::vector<std::string>& args) {
         if (!seen) unique.push_back(m);
     }
     o.methods = unique;
+    if (o.no_frames && !o.out) throw usage_error("--no-frames: needs --out (it only leaves out the frames)");
+    if (o.no_frames && o.exr) throw usage_error("--no-frames: cannot be combined with --exr");
     if (o.window && o.out) throw usage_error("--window: cannot be combined with --out (the window writes nothing)");
     return o;
 }

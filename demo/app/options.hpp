@@ -28,6 +28,7 @@ struct options {
     std::optional<std::filesystem::path> out;  ///< --out; empty: write nothing but the summary
     std::uint32_t seed = 1;                    ///< --seed
     bool exr = false;                          ///< --exr: also write linear EXR frames
+    bool no_frames = false;                    ///< --no-frames: with --out, write the metrics only (benchmarks)
     bool window = false;                       ///< --window: interactive GLFW window
     bool approximate_cdf = false;              ///< --approximate-cdf: SPVG's inverse-CDF fit for burley-N
     bool list_scenes = false;

@@ -99,6 +99,10 @@ TEST_CASE("unknown and malformed flags: one line, exit 2, nothing written", "[ap
     check_rejected(scene + "--method diffuse,,reference", 2, "--method", out);
     check_rejected(scene + "--exr=yes", 2, "--exr: takes no value", out);
     check_rejected(scene + "--window", 2, "--window: cannot be combined with --out", out);
+    check_rejected(scene + "--no-frames --exr", 2, "--no-frames: cannot be combined with --exr", out);
+    const emcv_test::command_result alone = run_demo(scene + "--no-frames");
+    CHECK(alone.exit_code == 2);
+    CHECK(alone.err == "emcv-demo: --no-frames: needs --out (it only leaves out the frames)\n");
 }
 
 TEST_CASE("zero, malformed and absurd sizes: one line, exit 2, nothing written", "[app][cli]") {
@@ -256,6 +260,25 @@ TEST_CASE("a small headless run writes frames and complete metrics files", "[app
         if (row["method"] == "reference") CHECK(row["psnr_db"].is_null());
         else CHECK(row["psnr_db"].is_number());
     }
+}
+
+TEST_CASE("--no-frames writes the metrics files and no frame", "[app][cli][gl]") {
+    const fs::path out = scratch_dir("no-frames") / "out";
+    const emcv_test::command_result r = run_demo("--scene '" + data_dir +
+                                                 "/tiny.json' --size 32x32 --frames 2 --method burley-4 --no-frames --out '" +
+                                                 out.string() + "'");
+    if (no_display(r)) SKIP("no OpenGL display: " << r.err);
+    INFO(r.err << r.out);
+    REQUIRE(r.exit_code == 0);
+    CHECK(fs::is_regular_file(out / "metrics.csv"));
+    CHECK(fs::is_regular_file(out / "metrics.json"));
+    std::size_t entries = 0;
+    for (const auto& entry : fs::recursive_directory_iterator(out)) {
+        INFO(entry.path());
+        CHECK(entry.path().parent_path() == out);  // no per-method folder, no frame
+        ++entries;
+    }
+    CHECK(entries == 2);
 }
 
 TEST_CASE("the progress bar is drawn when stderr is a terminal", "[app][cli][gl]") {
