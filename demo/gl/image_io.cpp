@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "image_io.hpp"
 
+#ifndef EMCV_GL_NO_IMAGE_FILES
 #include <OpenImageIO/imageio.h>
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -9,6 +11,7 @@
 #include <string>
 
 namespace emcv::gl {
+#ifndef EMCV_GL_NO_IMAGE_FILES
 namespace {
 
 std::string lower_extension(const std::filesystem::path& p) {
@@ -18,6 +21,7 @@ std::string lower_extension(const std::filesystem::path& p) {
 }
 
 }  // namespace
+#endif  // #ifndef EMCV_GL_NO_IMAGE_FILES
 
 float linear_to_srgb(float x) noexcept {
     x = std::clamp(x, 0.0f, 1.0f);
@@ -35,6 +39,17 @@ float_image read_texture_rgba32f(GLuint texture, int width, int height) {
     return img;
 }
 
+#ifdef EMCV_GL_NO_IMAGE_FILES
+// Built with -DEMCV_GL_IMAGE_FILES=OFF (a build for a machine without OpenImageIO, e.g. GPU timing runs that
+// write metrics only): every image file operation fails with a line that says why.
+void write_image(const std::filesystem::path& path, const float_image&) {
+    throw image_error("write_image " + path.string() + ": built without OpenImageIO (EMCV_GL_IMAGE_FILES=OFF)");
+}
+
+float_image read_image(const std::filesystem::path& path) {
+    throw image_error("read_image " + path.string() + ": built without OpenImageIO (EMCV_GL_IMAGE_FILES=OFF)");
+}
+#else
 void write_image(const std::filesystem::path& path, const float_image& image) {
     const std::size_t expected =
         static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) *
@@ -105,5 +120,6 @@ float_image read_image(const std::filesystem::path& path) {
                     row, img.pixels.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(y) * row));
     return img;
 }
+#endif  // #ifdef EMCV_GL_NO_IMAGE_FILES
 
 }  // namespace emcv::gl
