@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# The GPU runs behind docs/results.md, section "GPU": run on the machine with the GPU, then turn the output into
+# the tables here with scripts/eval/gpu_report.py.
+#   bash scripts/eval/gpu_runs.sh OUT_DIR [BIN_DIR]
+# BIN_DIR (default build/bin) holds emcv-glinfo, emcv-demo and emcv-eval; a build configured with
+# -DEMCV_GL_IMAGE_FILES=OFF is enough (no OpenImageIO on the GPU machine: emcv-demo --no-frames writes metrics only).
+#  1. the paper's teaser on light-off at 1920x1080 and 3360x1440: emcv-demo (PSNR against the converged reference,
+#     per frame) and emcv-eval three times (SSS pass ms per frame, medians over frames and runs);
+#  2. how the cost grows with resolution: emcv-eval from 128x128 to 3840x2160.
+set -euo pipefail
+[ $# -ge 1 ] || { echo "usage: gpu_runs.sh OUT_DIR [BIN_DIR]" >&2; exit 2; }
+out=$1
+bin=${2:-build/bin}
+for exe in emcv-glinfo emcv-demo emcv-eval; do
+  [ -x "$bin/$exe" ] || { echo "gpu_runs.sh: $bin/$exe not found" >&2; exit 2; }
+done
+mkdir -p "$out"
+"$bin/emcv-glinfo" > "$out/glinfo.txt"
+teaser_methods=diffuse,separable-17,burley-16,spvg,cv,cv-notex
+for size in 1920x1080 3360x1440; do
+  "$bin/emcv-demo" --scene light-off --method "$teaser_methods" --size "$size" --no-frames \
+    --out "$out/demo-$size" > "$out/demo-$size.txt"
+  for run in 1 2 3; do
+    "$bin/emcv-eval" --scene light-off --method "$teaser_methods" --size "$size" > "$out/eval-$size-run$run.csv"
+  done
+done
+for size in 128x128 256x256 640x360 1280x720 1920x1080 2560x1440 3360x1440 3840x2160; do
+  "$bin/emcv-eval" --scene light-off --method burley-16,separable-17,spvg,cv,cv-notex --size "$size" \
+    --frames 40 > "$out/scaling-$size.csv"
+done
+echo "gpu_runs.sh: wrote $out"
