@@ -19,10 +19,14 @@ bool light_has_shadow_pass(const light& l) {
     return l.casts_shadow && l.type != light::kind::point;
 }
 
+bool light_shines(const light& l, int frame) {
+    return l.intensity.at(frame) > 0.0f;
+}
+
 std::vector<std::string> pass_list(const scene& s, const method& m, int frame, int width, int height) {
     std::vector<std::string> passes{"gbuffer"};
     for (const light& l : s.lights) {
-        if (light_has_shadow_pass(l)) passes.push_back("shadow:" + l.name);
+        if (light_has_shadow_pass(l) && light_shines(l, frame)) passes.push_back("shadow:" + l.name);
     }
     passes.emplace_back("lighting");
     if (m.scatters() && sss_possibly_visible(s, frame, width, height)) {

@@ -466,7 +466,10 @@ void renderer::impl::update_frame(int frame, const view_matrices& v, bool sss_ra
                                                               : float(EMCV_RENDER_LIGHT_SPOT);
         b.radiance = glm::vec4(l.color * l.intensity.at(frame) * light_scale[i], kind);
         const auto layer = std::find(shadow_lights.begin(), shadow_lights.end(), i);
-        const float shadow_layer = layer == shadow_lights.end() ? -1.0f : float(layer - shadow_lights.begin());
+        // A dark light's layer was not rendered this frame (pass list): never read it.
+        const float shadow_layer = layer == shadow_lights.end() || !light_shines(l, frame)
+                                       ? -1.0f
+                                       : float(layer - shadow_lights.begin());
         b.position = glm::vec4(l.position, shadow_layer);
         b.direction = glm::vec4(glm::normalize(l.direction), std::cos(glm::radians(l.outer_cone_degrees)));
         const float texel = shadow_texel_world(l, world_bounds, shadow_resolution);
@@ -531,6 +534,7 @@ const frame_stats& renderer::impl::render(int frame) {
         glEnable(GL_POLYGON_OFFSET_FILL);
         glPolygonOffset(1.5f, 2.0f);
         for (std::size_t k = 0; k < shadow_lights.size(); ++k) {
+            if (!light_shines(s.lights[shadow_lights[k]], frame)) continue;  // dark this frame: lighting skips it
             begin_pass(1 + k);
             glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbos[k].id());
             const float far_depth = 1.0f;

@@ -41,6 +41,10 @@ glm::mat4 shadow_view_proj(const light& l, const bounding_sphere& scene_sphere);
 /// map per point light is left out; pass_list documents it).
 bool light_has_shadow_pass(const light& l);
 
+/// Whether a light shines at `frame` (its intensity curve is above 0 there). A dark light records no shadow
+/// pass that frame and the lighting pass skips it: nothing it would compute reaches the image.
+bool light_shines(const light& l, int frame);
+
 /// World size of one shadow-map texel near the scene (the normal offset of the shadow test).
 float shadow_texel_world(const light& l, const bounding_sphere& scene_sphere, int resolution);
 

@@ -54,6 +54,7 @@ void main() {
         Light light = lights[i];
         int kind = int(light.radiance.w);
         vec3 e = light.radiance.xyz;
+        if (max(e.x, max(e.y, e.z)) <= 0.0f) continue;  // a dark light: its shadow map was not rendered this frame
         vec3 l = -light.direction.xyz;
         if (kind != EMCV_RENDER_LIGHT_DIRECTIONAL) {
             vec3 to_light = light.position.xyz - world;

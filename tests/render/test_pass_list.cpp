@@ -47,6 +47,31 @@ TEST_CASE("pass lists of scenes built in code") {
     CHECK_FALSE(has_pass(pass_list(point, burley16, 0, 64, 48), "shadow:spot"));
 }
 
+TEST_CASE("a light whose curve is 0 at a frame records no shadow pass that frame") {
+    // light-off's key light steps from 2 to 0 at frame 30 (tests/scene checks the curve): shadow:key on
+    // frames 0..29 only, the spot fill (casts_shadow false) never.
+    const scene light_off = load_scene_argument("light-off");
+    for (int frame = 0; frame < light_off.frames; ++frame) {
+        INFO("frame " << frame);
+        const std::vector<std::string> passes = pass_list(light_off, burley16, frame, 128, 96);
+        CHECK(has_pass(passes, "shadow:key") == (frame < 30));
+        CHECK_FALSE(has_pass(passes, "shadow:fill"));
+    }
+    // A flicker curve on a shadow caster: the pass exists only during bursts.
+    scene burst = emcv::test::sphere_on_floor();
+    curve& flash = burst.lights[0].intensity;
+    flash.type = curve::kind::flicker;
+    flash.value = 0.0f;
+    flash.peak = 5.0f;
+    flash.bursts = {4};
+    flash.burst_length = 2;
+    CHECK_FALSE(has_pass(pass_list(burst, burley16, 3, 64, 48), "shadow:key"));
+    CHECK(has_pass(pass_list(burst, burley16, 4, 64, 48), "shadow:key"));
+    CHECK(has_pass(pass_list(burst, burley16, 5, 64, 48), "shadow:key"));
+    CHECK_FALSE(has_pass(pass_list(burst, burley16, 6, 64, 48), "shadow:key"));
+    CHECK(has_pass(pass_list(burst, burley16, 6, 64, 48), "shadow:spot"));
+}
+
 TEST_CASE("pass list of each built-in scene") {
     const std::vector<std::string> names = builtin_scene_names();
     REQUIRE(std::find(names.begin(), names.end(), "no-sss") != names.end());
@@ -88,6 +113,25 @@ TEST_CASE("the renderer records exactly the pass list") {
                 CHECK(stats.sss_pixels == 0);
             }
         }
+    }
+    CHECK(messenger.error_count() == 0);
+}
+
+TEST_CASE("the renderer skips a dark light's shadow pass on the frames it is dark") {
+    emcv::gl::context ctx = emcv::test::context_or_skip();
+    emcv::gl::debug_messenger messenger;
+    const scene light_off = load_scene_argument("light-off");
+    render_options options;
+    options.width = 32;
+    options.height = 24;
+    renderer r(light_off, burley16, options);
+    for (int frame : {0, 29, 30, 31, 59}) {
+        INFO("frame " << frame);
+        const frame_stats& stats = r.render(frame);
+        std::vector<std::string> recorded;
+        for (const pass_time& p : stats.passes) recorded.push_back(p.name);
+        CHECK(recorded == pass_list(light_off, burley16, frame, 32, 24));
+        CHECK(has_pass(recorded, "shadow:key") == (frame < 30));
     }
     CHECK(messenger.error_count() == 0);
 }
