@@ -21,6 +21,14 @@
 #include "adaptive/history.hpp"
 #include "gpu_types.hpp"
 #include "render/bindings.h"
+#include "emcv/port/bindings.h"
+
+// Image units (render/bindings.h): below the guaranteed minimum, and distinct within each pass.
+static_assert(EMCV_RENDER_IMG_DIFFUSE < EMCV_MAX_IMAGE_UNITS && EMCV_RENDER_IMG_SPECULAR < EMCV_MAX_IMAGE_UNITS &&
+              EMCV_RENDER_IMG_SSS_OUT < EMCV_MAX_IMAGE_UNITS && EMCV_RENDER_IMG_COUNT < EMCV_MAX_IMAGE_UNITS &&
+              EMCV_RENDER_IMG_LINEAR < EMCV_MAX_IMAGE_UNITS && EMCV_RENDER_IMG_DISPLAY < EMCV_MAX_IMAGE_UNITS);
+static_assert(EMCV_RENDER_IMG_DIFFUSE != EMCV_RENDER_IMG_SPECULAR && EMCV_RENDER_IMG_SSS_OUT != EMCV_RENDER_IMG_COUNT &&
+              EMCV_RENDER_IMG_LINEAR != EMCV_RENDER_IMG_DISPLAY);
 #include "separable_kernel.hpp"
 #include "view.hpp"
 

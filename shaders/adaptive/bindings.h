@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // shaders/adaptive/bindings.h — binding slots of the adaptive passes (spvg, cv, cv-notex), read by the host
 // (demo/render/adaptive, C++) and the GLSL passes. They use the slots render/bindings.h leaves free (18, 19,
-// 26-31: unique across resource types, below 32) and the renderer's own slots for what they share with it
+// 26-28; image units 2-4, see render/bindings.h) and the renderer's own slots for what they share with it
 // (G-buffer, lighting, motion, the SSS output bound at EMCV_RENDER_TEX_SSS_IN, the tile list).
 #ifndef EMCV_ADAPTIVE_BINDINGS_H
 #define EMCV_ADAPTIVE_BINDINGS_H
@@ -16,8 +16,8 @@
 #define EMCV_ADAPTIVE_TEX_PREV_MATERIAL 28    // last frame's material index + 1 (R8UI)
 
 // Images: this frame's history (written by adaptive-samples, updated in place by adaptive-update) and N
-#define EMCV_ADAPTIVE_IMG_HISTORY_A 29
-#define EMCV_ADAPTIVE_IMG_HISTORY_B 30
-#define EMCV_ADAPTIVE_IMG_SAMPLES 31          // samples per pixel for the burley pass (R32UI)
+#define EMCV_ADAPTIVE_IMG_SAMPLES 2           // samples per pixel for the burley pass (R32UI)
+#define EMCV_ADAPTIVE_IMG_HISTORY_A 3
+#define EMCV_ADAPTIVE_IMG_HISTORY_B 4
 
 #endif  // #ifndef EMCV_ADAPTIVE_BINDINGS_H

@@ -10,17 +10,17 @@
 #include "render/gbuffer_read.h"
 
 #if defined(EMCV_ADAPTIVE_CV)
-layout(rgba32f, EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_A)) uniform image2D history_a;
-layout(rg16f, EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_B)) uniform image2D history_b;
+layout(rgba32f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_A)) uniform image2D history_a;
+layout(rg16f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_B)) uniform image2D history_b;
 #define EmcvAdaptiveState EmcvEmcm2
 #elif defined(EMCV_ADAPTIVE_SPVG) || defined(EMCV_ADAPTIVE_NOTEX)
-layout(rgba16f, EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_A)) uniform image2D history_a;
+layout(rgba16f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_A)) uniform image2D history_a;
 #define EmcvAdaptiveState EmcvMovingStats
 #else
 #error "define EMCV_ADAPTIVE_SPVG, EMCV_ADAPTIVE_CV or EMCV_ADAPTIVE_NOTEX before including adaptive/history_io.h"
 #endif
 
-layout(r32ui, EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_IMG_SAMPLES)) uniform uimage2D samples_image;
+layout(r32ui, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_SAMPLES)) uniform uimage2D samples_image;
 
 /// A fresh (reset) state.
 EmcvAdaptiveState emcv_adaptive_init() {

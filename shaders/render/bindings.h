@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // shaders/render/bindings.h — binding slots of the renderer's passes, read by the host (demo/render, C++) and
-// by the GLSL passes from this one file (the pattern of include/emcv/port/bindings.h). Numbers are unique
-// across resource types (Vulkan shares one binding space per set) and below 32 (llvmpipe's image units).
+// by the GLSL passes from this one file (the pattern of include/emcv/port/bindings.h). Buffer and texture
+// numbers are unique across those types (Vulkan shares one binding space per set); images are numbered apart.
 #ifndef EMCV_RENDER_BINDINGS_H
 #define EMCV_RENDER_BINDINGS_H
 
@@ -32,13 +32,16 @@
 #define EMCV_RENDER_TEX_SSS_IN 16      // separable: the horizontal pass's output; composite: scattered
 #define EMCV_RENDER_TEX_MOTION 17      // motion in pixels, current - previous (RG16F)
 
-// Images written by compute passes
-#define EMCV_RENDER_IMG_DIFFUSE 20     // lighting
-#define EMCV_RENDER_IMG_SPECULAR 21    // lighting
-#define EMCV_RENDER_IMG_SSS_OUT 22     // sss-burley, sss-separable-*
-#define EMCV_RENDER_IMG_COUNT 23       // samples per pixel (R32UI)
-#define EMCV_RENDER_IMG_LINEAR 24      // composite: linear HDR
-#define EMCV_RENDER_IMG_DISPLAY 25     // composite: tonemapped, sRGB-encoded
+// Images written by compute passes: image units are their own small space (0..7, EMCV_MAX_IMAGE_UNITS in
+// emcv/port/bindings.h; NVIDIA has 8), so passes that never run together share units, and each pass binds its
+// images right before its dispatch. The burley pass reads EMCV_ADAPTIVE_IMG_SAMPLES (2) beside SSS_OUT and
+// COUNT, so the adaptive images (2-4) are kept off 0 and 1.
+#define EMCV_RENDER_IMG_DIFFUSE 0      // lighting
+#define EMCV_RENDER_IMG_SPECULAR 1     // lighting
+#define EMCV_RENDER_IMG_SSS_OUT 0      // sss-burley, sss-separable-*
+#define EMCV_RENDER_IMG_COUNT 1        // samples per pixel (R32UI), bound before the adaptive samples pass
+#define EMCV_RENDER_IMG_LINEAR 0       // composite: linear HDR
+#define EMCV_RENDER_IMG_DISPLAY 1      // composite: tonemapped, sRGB-encoded
 
 // Material kinds in materials[i].albedo.w
 #define EMCV_RENDER_MATERIAL_DIFFUSE 0

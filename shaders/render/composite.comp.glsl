@@ -10,8 +10,8 @@
 layout(local_size_x = EMCV_RENDER_TILE_SIZE, local_size_y = EMCV_RENDER_TILE_SIZE) in;
 
 layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_SSS_IN)) uniform sampler2D scattered;
-layout(rgba16f, EMCV_LAYOUT_BINDING(EMCV_RENDER_IMG_LINEAR)) writeonly uniform image2D out_linear;
-layout(rgba8, EMCV_LAYOUT_BINDING(EMCV_RENDER_IMG_DISPLAY)) writeonly uniform image2D out_display;
+layout(rgba16f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_LINEAR)) writeonly uniform image2D out_linear;
+layout(rgba8, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_DISPLAY)) writeonly uniform image2D out_display;
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);

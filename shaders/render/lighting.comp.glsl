@@ -8,8 +8,8 @@
 layout(local_size_x = EMCV_RENDER_TILE_SIZE, local_size_y = EMCV_RENDER_TILE_SIZE) in;
 
 layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_SHADOWS)) uniform sampler2DArrayShadow shadow_maps;
-layout(rgba16f, EMCV_LAYOUT_BINDING(EMCV_RENDER_IMG_DIFFUSE)) writeonly uniform image2D out_diffuse;
-layout(rgba16f, EMCV_LAYOUT_BINDING(EMCV_RENDER_IMG_SPECULAR)) writeonly uniform image2D out_specular;
+layout(rgba16f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_DIFFUSE)) writeonly uniform image2D out_diffuse;
+layout(rgba16f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_SPECULAR)) writeonly uniform image2D out_specular;
 
 const float pi = 3.14159265f;
 

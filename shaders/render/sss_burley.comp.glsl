@@ -12,10 +12,10 @@
 
 layout(local_size_x = EMCV_RENDER_TILE_SIZE, local_size_y = EMCV_RENDER_TILE_SIZE) in;
 
-layout(rgba16f, EMCV_LAYOUT_BINDING(EMCV_RENDER_IMG_SSS_OUT)) writeonly uniform image2D out_scattered;
-layout(r32ui, EMCV_LAYOUT_BINDING(EMCV_RENDER_IMG_COUNT)) writeonly uniform uimage2D out_count;
+layout(rgba16f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_SSS_OUT)) writeonly uniform image2D out_scattered;
+layout(r32ui, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_COUNT)) writeonly uniform uimage2D out_count;
 // Adaptive methods (frame.sss.y = 1): N per pixel from the adaptive-samples pass (shaders/adaptive).
-layout(r32ui, EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_IMG_SAMPLES)) readonly uniform uimage2D adaptive_samples;
+layout(r32ui, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_SAMPLES)) readonly uniform uimage2D adaptive_samples;
 
 shared uint tile_sample_sum;
 shared uint tile_sample_max;

@@ -23,7 +23,7 @@ layout(std430, EMCV_LAYOUT_BINDING(EMCV_RENDER_KERNELS)) readonly buffer Kernels
 };
 
 layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_SSS_IN)) uniform sampler2D source;
-layout(rgba16f, EMCV_LAYOUT_BINDING(EMCV_RENDER_IMG_SSS_OUT)) writeonly uniform image2D out_scattered;
+layout(rgba16f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_SSS_OUT)) writeonly uniform image2D out_scattered;
 
 void main() {
     ivec2 p = emcv_render_tile_pixel();

@@ -262,7 +262,7 @@ TEST_CASE("a small headless run writes frames and complete metrics files", "[app
     }
 }
 
-TEST_CASE("--no-frames writes the metrics files and no frame", "[app][cli][gl]") {
+TEST_CASE("the metrics-only flag (--no-frames) writes metrics.csv and metrics.json and no frame", "[app][cli][gl]") {
     const fs::path out = scratch_dir("no-frames") / "out";
     const emcv_test::command_result r = run_demo("--scene '" + data_dir +
                                                  "/tiny.json' --size 32x32 --frames 2 --method burley-4 --no-frames --out '" +

@@ -9,6 +9,16 @@
 #include <emcv/port/cv.h>
 
 #include "adaptive/bindings.h"
+#include "emcv/port/bindings.h"
+
+// Image units: every binding below the guaranteed minimum (NVIDIA has exactly 8), and the adaptive images apart
+// from the burley pass's own (render/bindings.h), which stay bound across the adaptive samples pass.
+static_assert(EMCV_ADAPTIVE_IMG_SAMPLES < EMCV_MAX_IMAGE_UNITS && EMCV_ADAPTIVE_IMG_HISTORY_A < EMCV_MAX_IMAGE_UNITS &&
+              EMCV_ADAPTIVE_IMG_HISTORY_B < EMCV_MAX_IMAGE_UNITS);
+static_assert(EMCV_ADAPTIVE_IMG_SAMPLES != EMCV_RENDER_IMG_SSS_OUT && EMCV_ADAPTIVE_IMG_SAMPLES != EMCV_RENDER_IMG_COUNT &&
+              EMCV_ADAPTIVE_IMG_HISTORY_A != EMCV_RENDER_IMG_COUNT && EMCV_ADAPTIVE_IMG_HISTORY_B != EMCV_RENDER_IMG_COUNT &&
+              EMCV_ADAPTIVE_IMG_HISTORY_A != EMCV_ADAPTIVE_IMG_SAMPLES && EMCV_ADAPTIVE_IMG_HISTORY_B != EMCV_ADAPTIVE_IMG_SAMPLES &&
+              EMCV_ADAPTIVE_IMG_HISTORY_A != EMCV_ADAPTIVE_IMG_HISTORY_B);
 #include "gl/debug.hpp"
 
 namespace emcv::demo::adaptive {
