@@ -87,7 +87,9 @@ int main(int argc, char** argv) {
                          "pixel; PSNR: dB of the "
                          "display image against the reference's, mean over frames\n"
                       << format_summary(summarize(result.rows, result.method_names));
-            if (o.out) std::cout << "wrote " << o.out->string() << "/{metrics.csv,metrics.json,<method>/frame-*.png}\n";
+            if (o.out)
+                std::cout << "wrote " << o.out->string()
+                          << (o.no_frames ? "/{metrics.csv,metrics.json}\n" : "/{metrics.csv,metrics.json,<method>/frame-*.png}\n");
         }
         if (messenger.error_count() > 0)
             return fail(1, std::to_string(messenger.error_count()) + " OpenGL errors, the last: " +
