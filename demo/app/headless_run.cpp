@@ -10,6 +10,7 @@
 #include <system_error>
 
 #include "gl/image_io.hpp"
+#include "heatmap.hpp"
 #include "image_metrics.hpp"
 #include "progress.hpp"
 #include "render/renderer.hpp"
@@ -31,11 +32,20 @@ pixel_mask mask_of(const gl::float_image& mask) {
     return out;
 }
 
-std::string frame_file(int frame, const char* extension) {
-    char name[32];
-    std::snprintf(name, sizeof name, "frame-%04d.%s", frame, extension);
+std::string frame_file(int frame, const char* extension, const char* stem = "frame") {
+    char name[48];
+    std::snprintf(name, sizeof name, "%s-%04d.%s", stem, frame, extension);
     return name;
 }
+
+bool is_adaptive(const method& m) {
+    return m.type == method::kind::spvg || m.type == method::kind::cv || m.type == method::kind::cv_notex;
+}
+
+/// Colour scales of the heatmaps (docs/demo.md, Outputs): N over SPVG's N_max = 64; alpha over [0, 2], so
+/// alpha = 1 (f follows G one to one) is the middle colour, green.
+constexpr float samples_heatmap_max = 64.0f;
+constexpr float alpha_heatmap_max = 2.0f;
 
 void make_output_directory(const fs::path& dir) {
     std::error_code ec;
@@ -137,6 +147,13 @@ run_result run_headless(const scene& s, const options& o, int frames) {
                 const fs::path dir = *o.out / run.m.name();
                 pending.push_back({dir / frame_file(frame, "png"), display});
                 if (o.exr) pending.push_back({dir / frame_file(frame, "exr"), linear});
+                // issue 9: per-pixel N of the adaptive methods, and cv's alpha (the other methods have none).
+                if (is_adaptive(run.m))
+                    pending.push_back({dir / frame_file(frame, "png", "samples"),
+                                       sample_heatmap(run.r.sample_counts(), samples_heatmap_max)});
+                if (run.m.type == method::kind::cv)
+                    pending.push_back({dir / frame_file(frame, "png", "alpha"),
+                                       sample_heatmap(run.r.cv_alpha(), alpha_heatmap_max)});
             }
             if (!is_reference) run.previous_display = std::move(display);
         }

@@ -5,12 +5,15 @@
 #include <algorithm>
 #include <exception>
 #include <iostream>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gl/context.hpp"
 #include "gl/debug.hpp"
 #include "headless_run.hpp"
+#include "light_change.hpp"
 #include "listings.hpp"
 #include "options.hpp"
 #include "scene/load.hpp"
@@ -81,15 +84,21 @@ int main(int argc, char** argv) {
             std::cout << "window: " << shown << " frames of " << s.name << " on " << context.renderer() << '\n';
         } else {
             const run_result result = run_headless(s, o, frames);
+            std::vector<std::string> notes;
+            if (const std::optional<int> change = first_light_change(s, frames))
+                if (std::optional<std::string> line = cv_vs_spvg_after_change(result.rows, *change))
+                    notes.push_back(std::move(*line));
             std::cout << "scene " << s.name << ", " << o.width << "x" << o.height << ", " << frames
                       << " frames, seed " << o.seed << ", " << context.renderer() << '\n'
                       << "times: GPU ms per frame (mean, p95) from frame 1 on (frame 0 is warm-up); spp: samples per SSS "
                          "pixel; PSNR: dB of the "
                          "display image against the reference's, mean over frames\n"
-                      << format_summary(summarize(result.rows, result.method_names));
+                      << format_summary(summarize(result.rows, result.method_names), notes);
             if (o.out)
                 std::cout << "wrote " << o.out->string()
-                          << (o.no_frames ? "/{metrics.csv,metrics.json}\n" : "/{metrics.csv,metrics.json,<method>/frame-*.png}\n");
+                          << (o.no_frames ? "/{metrics.csv,metrics.json}\n"
+                                          : "/{metrics.csv,metrics.json,<method>/frame-*.png}"
+                                            " (spvg, cv, cv-notex: samples-*.png; cv: alpha-*.png)\n");
         }
         if (messenger.error_count() > 0)
             return fail(1, std::to_string(messenger.error_count()) + " OpenGL errors, the last: " +

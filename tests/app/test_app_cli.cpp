@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../support/run_command.hpp"
+#include "gl/image_io.hpp"
 
 namespace fs = std::filesystem;
 
@@ -322,4 +323,71 @@ TEST_CASE("the window with a bad scripted key: one line, non-zero exit", "[app][
     CHECK(r.exit_code != 0);
     CHECK(count_lines(r.err) <= 2);  // the key help line, then the error (or no display at all)
     CHECK(r.err.find("emcv-demo: ") != std::string::npos);
+}
+
+namespace {
+
+/// Distinct RGB colours of a heatmap PNG, over all pixels and over the pixels that are not black (N > 0).
+struct colour_counts {
+    std::size_t all = 0, non_black = 0;
+};
+
+colour_counts distinct_colours(const fs::path& png) {
+    const emcv::gl::float_image image = emcv::gl::read_image(png);
+    std::set<std::vector<float>> all, non_black;
+    const auto channels = static_cast<std::size_t>(image.channels);
+    for (std::size_t p = 0; p + channels <= image.pixels.size(); p += channels) {
+        const std::vector<float> rgb(image.pixels.begin() + static_cast<std::ptrdiff_t>(p),
+                                     image.pixels.begin() + static_cast<std::ptrdiff_t>(p + 3));
+        all.insert(rgb);
+        if (rgb[0] + rgb[1] + rgb[2] > 0.0f) non_black.insert(rgb);
+    }
+    return {all.size(), non_black.size()};
+}
+
+}  // namespace
+
+TEST_CASE("adaptive methods write N heatmaps and cv alpha heatmaps and a static scene's N is not uniform", "[app][cli][gl]") {
+    const fs::path out = scratch_dir("heatmaps") / "out";
+    const emcv_test::command_result r = run_demo("--scene '" + data_dir +
+                                                 "/tiny.json' --size 48x48 --frames 4 --method diffuse,spvg,cv "
+                                                 "--seed 7 --out '" + out.string() + "'");
+    if (no_display(r)) SKIP("no OpenGL display: " << r.err);
+    INFO(r.err << r.out);
+    REQUIRE(r.exit_code == 0);
+    for (int f = 0; f < 4; ++f) {
+        const std::string n = "000" + std::to_string(f);
+        for (const char* m : {"spvg", "cv"}) CHECK(fs::is_regular_file(out / m / ("samples-" + n + ".png")));
+        CHECK(fs::is_regular_file(out / "cv" / ("alpha-" + n + ".png")));
+        for (const char* m : {"spvg", "diffuse", "reference"}) CHECK_FALSE(fs::exists(out / m / ("alpha-" + n + ".png")));
+        for (const char* m : {"diffuse", "reference"}) CHECK_FALSE(fs::exists(out / m / ("samples-" + n + ".png")));
+    }
+    // Frames 0 and 1 take N_max everywhere (no history yet); from frame 2 SPVG's count follows each pixel's
+    // variance, so the sphere's pixels do not all take one N, and the background takes none. (cv's static
+    // pixels all sit at the shared floor of 8 at this size: only the background differs.)
+    for (const char* m : {"spvg", "cv"}) {
+        INFO(m);
+        CHECK(distinct_colours(out / m / "samples-0003.png").all >= 2);
+    }
+    CHECK(distinct_colours(out / "spvg" / "samples-0003.png").non_black >= 2);
+    // The static light never changes: no cv vs spvg line.
+    CHECK(r.out.find("cv vs spvg") == std::string::npos);
+}
+
+TEST_CASE("with spvg and cv on a light switch the summary compares them from the switch frame", "[app][cli][gl]") {
+    const emcv_test::command_result r =
+        run_demo("--scene '" + data_dir + "/switch.json' --size 32x32 --method spvg,cv --seed 7");
+    if (no_display(r)) SKIP("no OpenGL display: " << r.err);
+    INFO(r.err << r.out);
+    REQUIRE(r.exit_code == 0);
+    // switch.json's key light steps 3 -> 0 at frame 3, and the scene has 6 frames: the window is frames 3-5.
+    CHECK(r.out.find("cv vs spvg, frames 3-5 (from the first light change at frame 3): samples ") !=
+          std::string::npos);
+    CHECK(r.out.find("SSS pass time ") != std::string::npos);
+    CHECK(r.out.find(" dB (cv ") != std::string::npos);
+
+    const emcv_test::command_result without_cv =
+        run_demo("--scene '" + data_dir + "/switch.json' --size 32x32 --method spvg --seed 7");
+    REQUIRE(without_cv.exit_code == 0);
+    CHECK(without_cv.out.find("cv vs spvg") == std::string::npos);
 }
