@@ -15,9 +15,12 @@ case "$seconds" in ''|*[!0-9]*) echo "fuzz.sh: SECONDS must be a whole number, g
 [ $# -le 1 ] || { echo "usage: bash scripts/fuzz.sh [SECONDS per target]" >&2; exit 2; }
 command -v clang++ >/dev/null || { echo "fuzz.sh: clang++ not found (apt-get install clang libclang-rt-14-dev)" >&2; exit 1; }
 
-targets=(estimators)
+targets=(estimators scene)
+# The scene target links the demo's scene library (EMCV_BUILD_DEMO=ON; only the fuzz targets are built). Every
+# object file gets libFuzzer's coverage and the sanitizers, so that the loader's own branches guide the search.
 CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DEMCV_BUILD_FUZZERS=ON \
-  -DEMCV_BUILD_DEMO=OFF -DEMCV_BUILD_BENCH=OFF -DEMCV_INSTALL=OFF >/dev/null
+  -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer" \
+  -DEMCV_BUILD_DEMO=ON -DEMCV_BUILD_BENCH=OFF -DEMCV_INSTALL=OFF >/dev/null
 cmake --build build-fuzz --target "${targets[@]/#/emcv-fuzz-}"
 
 status=0
