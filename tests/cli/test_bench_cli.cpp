@@ -4,7 +4,6 @@
 #include <catch2/catch_test_macros.hpp>
 
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "cli_expect.hpp"
@@ -12,25 +11,14 @@
 #ifdef EMCV_BENCH
 
 namespace fs = std::filesystem;
+using emcv_cli_test::entries;
+using emcv_cli_test::scratch_dir;
 
 namespace {
 
 // no benchmark matches: the error paths run nothing
 std::string bench(const std::string& args) {
     return std::string("'") + EMCV_BENCH + "' --benchmark_filter=NO_BENCHMARK_HAS_THIS_NAME " + args;
-}
-
-fs::path scratch_dir(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("emcv-bench-cli-" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
-
-std::size_t entries(const fs::path& dir) {
-    std::size_t n = 0;
-    for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++n;
-    return n;
 }
 
 }  // namespace
@@ -48,7 +36,7 @@ TEST_CASE("emcv-bench: bad usage exits 2 with one line and writes no file", "[cl
         {"--benchmark_time_unit=h", "--benchmark_time_unit must be ns, us, ms or s, got 'h'"},
         {"--benchmark_out=", "--benchmark_out needs a file name"},
     };
-    const fs::path dir = scratch_dir("bad");
+    const fs::path dir = scratch_dir("bench-bad");
     const fs::path out = dir / "out.json";
     for (const bad_case& c : cases) {
         // --benchmark_out first, so that a later bad argument must also remove the partial file
@@ -69,9 +57,8 @@ TEST_CASE("emcv-bench: a flag value of the wrong type exits 2", "[cli][bench]") 
 }
 
 TEST_CASE("emcv-bench: an unwritable --benchmark_out exits 2 and leaves nothing", "[cli][bench]") {
-    const fs::path dir = scratch_dir("unwritable");
-    const fs::path blocker = dir / "a-file";
-    { std::ofstream(blocker) << "not a directory\n"; }
+    const fs::path dir = scratch_dir("bench-unwritable");
+    const fs::path blocker = emcv_cli_test::make_blocker(dir);
     emcv_cli_test::expect_error("emcv-bench", bench("--benchmark_out='" + (blocker / "out.json").string() + "'"), 2,
                                 "cannot write --benchmark_out '" + (blocker / "out.json").string() + "'");
     CHECK(entries(dir) == 1);  // only the blocker
@@ -79,7 +66,7 @@ TEST_CASE("emcv-bench: an unwritable --benchmark_out exits 2 and leaves nothing"
 }
 
 TEST_CASE("emcv-bench: --benchmark_out appears complete, under its own name only", "[cli][bench]") {
-    const fs::path dir = scratch_dir("out");
+    const fs::path dir = scratch_dir("bench-out");
     const fs::path out = dir / "out.json";
     const emcv_test::command_result r = emcv_test::run_command(
         std::string("'") + EMCV_BENCH + "' --benchmark_filter='^scalar/float/emcm$' --benchmark_min_time=0.001 "
