@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "../support/run_command.hpp"
 
@@ -24,6 +25,18 @@ inline void expect_error(const std::string& tool, const std::string& command, in
     const std::string line = first_line(r.err);
     CHECK(line.rfind(tool + ": ", 0) == 0);
     CHECK(line.find(names) != std::string::npos);
+}
+
+/// One bad command line: the arguments after the tool and what the error line must contain.
+struct bad_usage {
+    std::string args;
+    std::string names;
+};
+
+/// expect_error for each case, the command being `command_prefix + " " + args`.
+inline void expect_errors(const std::string& tool, const std::string& command_prefix,
+                          const std::vector<bad_usage>& cases, int status = 2) {
+    for (const bad_usage& c : cases) expect_error(tool, command_prefix + " " + c.args, status, c.names);
 }
 
 /// An empty scratch folder of the system's temporary folder, "emcv-cli-<name>" (emptied when it exists).

@@ -24,11 +24,7 @@ std::string bench(const std::string& args) {
 }  // namespace
 
 TEST_CASE("emcv-bench: bad usage exits 2 with one line and writes no file", "[cli][bench]") {
-    struct bad_case {
-        const char* args;
-        const char* names;
-    };
-    const bad_case cases[] = {
+    const emcv_cli_test::bad_usage cases[] = {
         {"--bogus", "unknown argument '--bogus'"},
         {"scalar", "unknown argument 'scalar'"},
         {"--benchmark_format=xml", "--benchmark_format must be console, json or csv, got 'xml'"},
@@ -38,7 +34,7 @@ TEST_CASE("emcv-bench: bad usage exits 2 with one line and writes no file", "[cl
     };
     const fs::path dir = scratch_dir("bench-bad");
     const fs::path out = dir / "out.json";
-    for (const bad_case& c : cases) {
+    for (const emcv_cli_test::bad_usage& c : cases) {
         // --benchmark_out first, so that a later bad argument must also remove the partial file
         emcv_cli_test::expect_error("emcv-bench", bench("--benchmark_out='" + out.string() + "' " + c.args), 2,
                                     c.names);

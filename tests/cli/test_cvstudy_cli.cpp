@@ -9,11 +9,7 @@
 
 #ifdef EMCV_CVSTUDY
 TEST_CASE("emcv-cvstudy: bad usage exits 2 and names the argument", "[cli][cvstudy]") {
-    struct bad_case {
-        const char* args;
-        const char* names;
-    };
-    const bad_case cases[] = {
+    emcv_cli_test::expect_errors("emcv-cvstudy", std::string("'") + EMCV_CVSTUDY + "'", {
         {"--bogus", "unknown flag '--bogus'"},
         {"400", "unknown flag '400'"},
         {"--pixels", "--pixels: missing value"},
@@ -27,8 +23,6 @@ TEST_CASE("emcv-cvstudy: bad usage exits 2 and names the argument", "[cli][cvstu
         {"--half-state", "--half-state: missing value"},
         {"--half-state none", "--half-state: expected all or means, got 'none'"},
         {"--pixels 10 --bogus", "unknown flag '--bogus'"},
-    };
-    for (const bad_case& c : cases)
-        emcv_cli_test::expect_error("emcv-cvstudy", std::string("'") + EMCV_CVSTUDY + "' " + c.args, 2, c.names);
+    });
 }
 #endif

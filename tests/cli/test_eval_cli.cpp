@@ -21,11 +21,8 @@ std::string eval(const std::string& args) { return std::string("'") + EMCV_EVAL 
 }  // namespace
 
 TEST_CASE("emcv-eval: bad usage exits 2 and names the argument", "[cli][eval]") {
-    struct bad_case {
-        const char* args;
-        const char* names;
-    };
-    const bad_case cases[] = {
+    const fs::path dir = emcv_cli_test::scratch_dir("eval-usage");
+    emcv_cli_test::expect_errors("emcv-eval", "cd " + quoted(dir) + " && " + eval(""), {
         {"--bogus", "unknown option '--bogus'"},
         {"--method spvg --bogus 3", "unknown option '--bogus'"},
         {"spvg", "unexpected argument 'spvg'"},
@@ -44,10 +41,7 @@ TEST_CASE("emcv-eval: bad usage exits 2 and names the argument", "[cli][eval]") 
         {"--method spvg --sss-scale 2x", "got '2x'"},
         {"--method spvg --heatmaps 1,x --heatmap-dir d", "--heatmaps: expected an integer in 0..100000, got 'x'"},
         {"--method spvg --heatmaps 1", "--heatmaps needs --heatmap-dir DIR"},
-    };
-    const fs::path dir = emcv_cli_test::scratch_dir("eval-usage");
-    for (const bad_case& c : cases)
-        emcv_cli_test::expect_error("emcv-eval", "cd " + quoted(dir) + " && " + eval(c.args), 2, c.names);
+    });
     CHECK(emcv_cli_test::entries(dir) == 0);
     fs::remove_all(dir);
 }

@@ -23,13 +23,9 @@ std::string golden(const std::string& args) { return std::string("'") + EMCV_GOL
 }  // namespace
 
 TEST_CASE("emcv-golden: bad usage exits 2 and names the argument", "[cli][golden]") {
-    struct bad_case {
-        std::string args;
-        std::string names;
-    };
     const fs::path dir = emcv_cli_test::scratch_dir("golden-usage");
     const std::string out = " --out " + quoted(dir / "out");
-    const bad_case cases[] = {
+    emcv_cli_test::expect_errors("emcv-golden", golden(""), {
         {"", "missing command (update, render or compare)"},
         {"frobnicate", "unknown command 'frobnicate' (update, render or compare)"},
         {"render --bogus" + out, "unknown option '--bogus'"},
@@ -45,8 +41,7 @@ TEST_CASE("emcv-golden: bad usage exits 2 and names the argument", "[cli][golden
         {"update --seed 7", "--seed is for render"},
         {"compare a.png", "compare: expected ACTUAL EXPECTED"},
         {"compare a.png b.png c.png", "compare: expected ACTUAL EXPECTED"},
-    };
-    for (const bad_case& c : cases) emcv_cli_test::expect_error("emcv-golden", golden(c.args), 2, c.names);
+    });
     CHECK(emcv_cli_test::entries(dir) == 0);
     fs::remove_all(dir);
 }

@@ -14,13 +14,8 @@ using emcv_cli_test::quoted;
 
 namespace {
 
-struct bad_case {
-    std::string args;
-    std::string names;
-};
-
 /// The scene problems every scene-reading tool must name, with the file first (load.hpp's scene_error).
-std::vector<bad_case> bad_scenes(const fs::path& dir) {
+std::vector<emcv_cli_test::bad_usage> bad_scenes(const fs::path& dir) {
     const fs::path malformed = fs::path(EMCV_CLI_APP_DATA) / "malformed.json";
     return {
         {quoted(dir / "no-such.json"), (dir / "no-such.json").string() + ": no such scene file or built-in"},
@@ -34,36 +29,33 @@ std::vector<bad_case> bad_scenes(const fs::path& dir) {
 
 #ifdef EMCV_SCENE_INFO
 TEST_CASE("emcv-scene-info: bad usage and bad scenes exit 2 with one line", "[cli][scene-info]") {
-    const std::string tool = std::string("'") + EMCV_SCENE_INFO + "' ";
-    const bad_case usage[] = {
+    const std::string tool = std::string("'") + EMCV_SCENE_INFO + "'";
+    emcv_cli_test::expect_errors("emcv-scene-info", tool, {
         {"--bogus", "unknown flag --bogus"},
         {"--size", "--size expects WxH"},
         {"--size 256", "--size expects WxH"},
         {"--size 0x256", "--size expects WxH"},
         {"--size 256x256x3", "--size expects WxH"},
         {"--size 99999x2", "--size expects WxH"},
-    };
-    for (const bad_case& c : usage) emcv_cli_test::expect_error("emcv-scene-info", tool + c.args, 2, c.names);
+    });
     const fs::path dir = emcv_cli_test::scratch_dir("scene-info");
     // a good built-in scene first: a later bad one must still leave no partial table
-    for (const bad_case& c : bad_scenes(dir))
-        emcv_cli_test::expect_error("emcv-scene-info", tool + "static " + c.args, 2, c.names);
+    emcv_cli_test::expect_errors("emcv-scene-info", tool + " static", bad_scenes(dir));
     fs::remove_all(dir);
 }
 #endif
 
 #ifdef EMCV_LIGHT_CURVES
 TEST_CASE("emcv-light-curves: bad usage and bad scenes exit 2 with one line", "[cli][light-curves]") {
-    const std::string tool = std::string("'") + EMCV_LIGHT_CURVES + "' ";
-    const bad_case usage[] = {
+    const std::string tool = std::string("'") + EMCV_LIGHT_CURVES + "'";
+    emcv_cli_test::expect_errors("emcv-light-curves", tool, {
         {"", "missing SCENE"},
         {"--bogus", "unknown flag '--bogus'"},
         {"static --bogus", "unknown flag '--bogus'"},
         {"static light-off", "one SCENE only, got also 'light-off'"},
-    };
-    for (const bad_case& c : usage) emcv_cli_test::expect_error("emcv-light-curves", tool + c.args, 2, c.names);
+    });
     const fs::path dir = emcv_cli_test::scratch_dir("light-curves");
-    for (const bad_case& c : bad_scenes(dir)) emcv_cli_test::expect_error("emcv-light-curves", tool + c.args, 2, c.names);
+    emcv_cli_test::expect_errors("emcv-light-curves", tool, bad_scenes(dir));
     fs::remove_all(dir);
 }
 
