@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
-// Fuzz target: the scene loader (demo/scene/load.hpp) on arbitrary bytes. The input is written to a scene
-// file in a private scratch folder (so that relative mesh and texture paths resolve there, and a mesh file
-// named by the input is whatever sits there: nothing) and given to load_scene unchanged.
+// Fuzz target: the scene loader (demo/scene/load.hpp) on arbitrary bytes. The input is written to
+// <scratch>/scenes/fuzz.json in a private scratch folder and given to load_scene unchanged. <scratch>/assets
+// links to the repository's demo/assets, so that "../assets/bunny.ply" resolves as it does for the built-in
+// scenes in demo/scenes/ (the seeds load whole, mesh and texture readers included) and nothing else on the
+// machine (a /tmp/assets, say) changes what an input does.
 // Invariants checked (demo/scene/load.hpp, docs/scenes.md):
 //   - load_scene returns a scene or throws scene_error; no other exception type escapes;
 //   - a scene_error's what() is "<file>: <json pointer>: <problem>": it starts with the file name as given,
@@ -28,7 +30,11 @@ namespace fs = std::filesystem;
 /// One scratch folder per process, removed at exit.
 struct scratch_folder {
     fs::path path = fs::temp_directory_path() / ("emcv-fuzz-scene-" + std::to_string(::getpid()));
-    scratch_folder() { fs::create_directories(path); }
+    scratch_folder() {
+        fs::remove_all(path);
+        fs::create_directories(path / "scenes");
+        fs::create_directory_symlink(EMCV_DEMO_ASSETS, path / "assets");
+    }
     ~scratch_folder() {
         std::error_code ignored;
         fs::remove_all(path, ignored);
@@ -55,7 +61,7 @@ void check_scene(const emcv::demo::scene& s) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     static const scratch_folder folder;
-    const fs::path file = folder.path / "fuzz.json";
+    const fs::path file = folder.path / "scenes" / "fuzz.json";
     {
         std::ofstream out(file, std::ios::binary | std::ios::trunc);
         out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
