@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets with clang in build-fuzz/ and runs each for a bounded time.
-#   bash scripts/fuzz.sh [SECONDS per target, default 60]
+#   bash scripts/fuzz.sh [SECONDS per target, default 60] [TARGET...]   (targets: estimators scene; default all)
 # Each run starts from the repository corpus (tests/fuzz/corpus/<target>/, read only: the run's new inputs go
 # to build-fuzz/corpus/<target>/, kept between runs), with ASan + UBSan; a crash, hang (-timeout 10 s per
 # input), invariant violation or sanitizer report leaves the input in build-fuzz/artifacts/<target>/ and makes
@@ -12,12 +12,19 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
 case "$seconds" in ''|*[!0-9]*) echo "fuzz.sh: SECONDS must be a whole number, got '$seconds'" >&2; exit 2;; esac
-[ $# -le 1 ] || { echo "usage: bash scripts/fuzz.sh [SECONDS per target]" >&2; exit 2; }
+all_targets=(estimators scene)
+targets=("${@:2}")
+[ ${#targets[@]} -gt 0 ] || targets=("${all_targets[@]}")
+for t in "${targets[@]}"; do
+  case " ${all_targets[*]} " in *" $t "*) ;; *) echo "fuzz.sh: unknown target '$t' (targets: ${all_targets[*]})" >&2; exit 2;; esac
+done
 command -v clang++ >/dev/null || { echo "fuzz.sh: clang++ not found (apt-get install clang libclang-rt-14-dev)" >&2; exit 1; }
 
-targets=(estimators)
+# The scene target links the demo's scene library (EMCV_BUILD_DEMO=ON; only the fuzz targets are built). Every
+# object file gets libFuzzer's coverage and the sanitizers, so that the loader's own branches guide the search.
 CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DEMCV_BUILD_FUZZERS=ON \
-  -DEMCV_BUILD_DEMO=OFF -DEMCV_BUILD_BENCH=OFF -DEMCV_INSTALL=OFF >/dev/null
+  -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer" \
+  -DEMCV_BUILD_DEMO=ON -DEMCV_BUILD_BENCH=OFF -DEMCV_INSTALL=OFF >/dev/null
 cmake --build build-fuzz --target "${targets[@]/#/emcv-fuzz-}"
 
 status=0

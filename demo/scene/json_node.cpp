@@ -56,7 +56,7 @@ void json_node::check_keys(std::string_view kind) const {
     const schema_object& rule = scene_schema_object(kind);
     for (const auto& [key, member] : value_->items()) {
         const bool known = std::any_of(rule.keys.begin(), rule.keys.end(),
-                                       [&](const schema_key& k) { return k.name == key; });
+                                       [&wanted = key](const schema_key& k) { return k.name == wanted; });
         if (!known) {
             std::string allowed;
             for (const auto& k : rule.keys) allowed += (allowed.empty() ? "" : ", ") + std::string(k.name);

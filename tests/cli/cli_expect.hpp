@@ -5,7 +5,10 @@
 
 #include <catch2/catch_test_macros.hpp>
 
+#include <filesystem>
+#include <fstream>
 #include <string>
+#include <vector>
 
 #include "../support/run_command.hpp"
 
@@ -23,5 +26,42 @@ inline void expect_error(const std::string& tool, const std::string& command, in
     CHECK(line.rfind(tool + ": ", 0) == 0);
     CHECK(line.find(names) != std::string::npos);
 }
+
+/// One bad command line: the arguments after the tool and what the error line must contain.
+struct bad_usage {
+    std::string args;
+    std::string names;
+};
+
+/// expect_error for each case, the command being `command_prefix + " " + args`.
+inline void expect_errors(const std::string& tool, const std::string& command_prefix,
+                          const std::vector<bad_usage>& cases, int status = 2) {
+    for (const bad_usage& c : cases) expect_error(tool, command_prefix + " " + c.args, status, c.names);
+}
+
+/// An empty scratch folder of the system's temporary folder, "emcv-cli-<name>" (emptied when it exists).
+inline std::filesystem::path scratch_dir(const std::string& name) {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("emcv-cli-" + name);
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+/// How many entries `dir` holds (an output left behind shows up here).
+inline std::size_t entries(const std::filesystem::path& dir) {
+    std::size_t n = 0;
+    for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++n;
+    return n;
+}
+
+/// A regular file in `dir`: a path below it ("<blocker>/out") cannot be created, even by root.
+inline std::filesystem::path make_blocker(const std::filesystem::path& dir) {
+    const std::filesystem::path blocker = dir / "a-file";
+    std::ofstream(blocker) << "not a directory\n";
+    return blocker;
+}
+
+/// `path` in single quotes for /bin/sh.
+inline std::string quoted(const std::filesystem::path& path) { return "'" + path.string() + "'"; }
 
 }  // namespace emcv_cli_test

@@ -4,7 +4,6 @@
 #include <catch2/catch_test_macros.hpp>
 
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "cli_expect.hpp"
@@ -12,6 +11,8 @@
 #ifdef EMCV_BENCH
 
 namespace fs = std::filesystem;
+using emcv_cli_test::entries;
+using emcv_cli_test::scratch_dir;
 
 namespace {
 
@@ -20,27 +21,10 @@ std::string bench(const std::string& args) {
     return std::string("'") + EMCV_BENCH + "' --benchmark_filter=NO_BENCHMARK_HAS_THIS_NAME " + args;
 }
 
-fs::path scratch_dir(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("emcv-bench-cli-" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
-
-std::size_t entries(const fs::path& dir) {
-    std::size_t n = 0;
-    for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++n;
-    return n;
-}
-
 }  // namespace
 
 TEST_CASE("emcv-bench: bad usage exits 2 with one line and writes no file", "[cli][bench]") {
-    struct bad_case {
-        const char* args;
-        const char* names;
-    };
-    const bad_case cases[] = {
+    const emcv_cli_test::bad_usage cases[] = {
         {"--bogus", "unknown argument '--bogus'"},
         {"scalar", "unknown argument 'scalar'"},
         {"--benchmark_format=xml", "--benchmark_format must be console, json or csv, got 'xml'"},
@@ -48,9 +32,9 @@ TEST_CASE("emcv-bench: bad usage exits 2 with one line and writes no file", "[cl
         {"--benchmark_time_unit=h", "--benchmark_time_unit must be ns, us, ms or s, got 'h'"},
         {"--benchmark_out=", "--benchmark_out needs a file name"},
     };
-    const fs::path dir = scratch_dir("bad");
+    const fs::path dir = scratch_dir("bench-bad");
     const fs::path out = dir / "out.json";
-    for (const bad_case& c : cases) {
+    for (const emcv_cli_test::bad_usage& c : cases) {
         // --benchmark_out first, so that a later bad argument must also remove the partial file
         emcv_cli_test::expect_error("emcv-bench", bench("--benchmark_out='" + out.string() + "' " + c.args), 2,
                                     c.names);
@@ -69,9 +53,8 @@ TEST_CASE("emcv-bench: a flag value of the wrong type exits 2", "[cli][bench]") 
 }
 
 TEST_CASE("emcv-bench: an unwritable --benchmark_out exits 2 and leaves nothing", "[cli][bench]") {
-    const fs::path dir = scratch_dir("unwritable");
-    const fs::path blocker = dir / "a-file";
-    { std::ofstream(blocker) << "not a directory\n"; }
+    const fs::path dir = scratch_dir("bench-unwritable");
+    const fs::path blocker = emcv_cli_test::make_blocker(dir);
     emcv_cli_test::expect_error("emcv-bench", bench("--benchmark_out='" + (blocker / "out.json").string() + "'"), 2,
                                 "cannot write --benchmark_out '" + (blocker / "out.json").string() + "'");
     CHECK(entries(dir) == 1);  // only the blocker
@@ -79,7 +62,7 @@ TEST_CASE("emcv-bench: an unwritable --benchmark_out exits 2 and leaves nothing"
 }
 
 TEST_CASE("emcv-bench: --benchmark_out appears complete, under its own name only", "[cli][bench]") {
-    const fs::path dir = scratch_dir("out");
+    const fs::path dir = scratch_dir("bench-out");
     const fs::path out = dir / "out.json";
     const emcv_test::command_result r = emcv_test::run_command(
         std::string("'") + EMCV_BENCH + "' --benchmark_filter='^scalar/float/emcm$' --benchmark_min_time=0.001 "

@@ -16,11 +16,7 @@ std::string glinfo(const std::string& args) { return std::string("'") + EMCV_GLI
 }  // namespace
 
 TEST_CASE("emcv-glinfo: bad usage exits 2 and names the argument", "[cli][glinfo]") {
-    struct bad_case {
-        const char* args;
-        const char* names;
-    };
-    const bad_case cases[] = {
+    emcv_cli_test::expect_errors("emcv-glinfo", glinfo(""), {
         {"--bogus", "unknown argument '--bogus'"},
         {"surfaceless", "unknown argument 'surfaceless'"},
         {"--platform", "--platform needs a value"},
@@ -32,8 +28,7 @@ TEST_CASE("emcv-glinfo: bad usage exits 2 and names the argument", "[cli][glinfo
         {"--device 3x", "got '3x'"},
         {"--device 99999999999", "got '99999999999'"},
         {"--device 0 --platform surfaceless", "--device applies to the device platform only"},
-    };
-    for (const bad_case& c : cases) emcv_cli_test::expect_error("emcv-glinfo", glinfo(c.args), 2, c.names);
+    });
 }
 
 TEST_CASE("emcv-glinfo: no platform to try exits 1 with one line", "[cli][glinfo]") {

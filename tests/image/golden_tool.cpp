@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <iostream>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "gl/context.hpp"
@@ -55,6 +56,12 @@ int render_all(const fs::path& out, const std::string& only, bool show_changes, 
     for (const golden_case& c : read_cases(golden_dir / "cases.txt"))
         if (only.empty() || c.stem().find(only) != std::string::npos) cases.push_back(c);
     if (cases.empty()) throw usage_error("--only '" + only + "' matches no case of " + (golden_dir / "cases.txt").string());
+    // before the GL context and the renders: an output folder that cannot be made fails at once
+    std::error_code ec;
+    fs::create_directories(out, ec);
+    if (ec || !fs::is_directory(out))
+        throw std::runtime_error("--out '" + out.string() + "': cannot create the folder (" +
+                                 (ec ? ec.message() : "not a folder") + ")");
     emcv::gl::context context;
     emcv::gl::debug_messenger messenger;
     for (const golden_case& c : cases) {

@@ -7,11 +7,26 @@
 
 #include "scene/load.hpp"
 
+namespace {
+
+const char* const usage = "usage: emcv-light-curves SCENE (a file or a built-in name)\n";
+
+int usage_error(const std::string& problem) {
+    std::cerr << "emcv-light-curves: " << problem << '\n' << usage;
+    return 2;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
-    if (argc != 2 || std::string(argv[1]) == "--help") {
-        std::cerr << "usage: emcv-light-curves SCENE (a file or a built-in name)\n";
-        return 2;
+    if (argc == 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
+        std::cout << usage;
+        return 0;
     }
+    if (argc < 2) return usage_error("missing SCENE");
+    for (int i = 1; i < argc; ++i)
+        if (argv[i][0] == '-') return usage_error(std::string("unknown flag '") + argv[i] + "'");
+    if (argc > 2) return usage_error(std::string("one SCENE only, got also '") + argv[2] + "'");
     try {
         const emcv::demo::scene s = emcv::demo::load_scene_argument(argv[1]);
         std::cout << "frame,light,intensity\n";

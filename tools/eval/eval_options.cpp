@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "eval_options.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <iterator>
 #include <sstream>
 
 namespace emcv::eval {
@@ -47,6 +49,10 @@ options parse_options(const std::vector<std::string>& args) {
             continue;
         }
         if (flag.rfind("--", 0) != 0) throw usage_error("unexpected argument '" + flag + "'");
+        static const char* const known[] = {"--scene", "--method", "--size", "--frames", "--seed", "--sss-scale",
+                                            "--heatmaps", "--heatmap-dir"};
+        if (std::find(std::begin(known), std::end(known), flag) == std::end(known))
+            throw usage_error("unknown option '" + flag + "'");
         if (i + 1 >= args.size()) throw usage_error(flag + ": missing value");
         const std::string& value = args[++i];
         if (flag == "--scene") {
@@ -74,10 +80,8 @@ options parse_options(const std::vector<std::string>& args) {
             o.sss_scale = k;
         } else if (flag == "--heatmaps") {
             for (const std::string& f : split(value)) o.heatmap_frames.push_back(static_cast<int>(parse_integer(flag, f, 0, 100000)));
-        } else if (flag == "--heatmap-dir") {
+        } else {  // --heatmap-dir, the last of `known`
             o.heatmap_dir = value;
-        } else {
-            throw usage_error("unknown option '" + flag + "'");
         }
     }
     if (o.help) return o;
