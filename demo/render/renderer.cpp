@@ -21,6 +21,7 @@
 #include "adaptive/history.hpp"
 #include "gpu_types.hpp"
 #include "render/bindings.h"
+#include "targets.hpp"
 #include "emcv/port/bindings.h"
 
 // Image units (render/bindings.h): below the guaranteed minimum, and distinct within each pass.
@@ -48,17 +49,6 @@ fs::path resolve_dir(const fs::path& option, const char* environment, const char
 }
 
 GLuint div_up(int n, int d) { return static_cast<GLuint>((n + d - 1) / d); }
-
-/// A single-level 2-D texture for a render target, nearest filtering (texelFetch needs a complete texture).
-gl::texture_2d make_target(GLenum format, int width, int height) {
-    gl::texture_2d t = gl::texture_2d::create();
-    glTextureStorage2D(t.id(), 1, format, width, height);
-    glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(t.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return t;
-}
 
 /// A mipmapped RGBA16F texture from linear RGBA floats (scene textures), or 1x1 white.
 gl::texture_2d make_albedo_map(int width, int height, const float* rgba) {

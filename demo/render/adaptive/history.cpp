@@ -11,6 +11,9 @@
 #include "adaptive/bindings.h"
 #include "emcv/port/bindings.h"
 
+#include "gl/debug.hpp"
+#include "render/targets.hpp"
+
 // Image units: every binding below the guaranteed minimum (NVIDIA has exactly 8), and the adaptive images apart
 // from the burley pass's own (render/bindings.h), which stay bound across the adaptive samples pass.
 static_assert(EMCV_ADAPTIVE_IMG_SAMPLES < EMCV_MAX_IMAGE_UNITS && EMCV_ADAPTIVE_IMG_HISTORY_A < EMCV_MAX_IMAGE_UNITS &&
@@ -19,23 +22,10 @@ static_assert(EMCV_ADAPTIVE_IMG_SAMPLES != EMCV_RENDER_IMG_SSS_OUT && EMCV_ADAPT
               EMCV_ADAPTIVE_IMG_HISTORY_A != EMCV_RENDER_IMG_COUNT && EMCV_ADAPTIVE_IMG_HISTORY_B != EMCV_RENDER_IMG_COUNT &&
               EMCV_ADAPTIVE_IMG_HISTORY_A != EMCV_ADAPTIVE_IMG_SAMPLES && EMCV_ADAPTIVE_IMG_HISTORY_B != EMCV_ADAPTIVE_IMG_SAMPLES &&
               EMCV_ADAPTIVE_IMG_HISTORY_A != EMCV_ADAPTIVE_IMG_HISTORY_B);
-#include "gl/debug.hpp"
 
 namespace emcv::demo::adaptive {
 
 namespace {
-
-gl::texture_2d make_texture(GLenum format, int width, int height) {
-    gl::texture_2d t = gl::texture_2d::create();
-    glTextureStorage2D(t.id(), 1, format, width, height);
-    glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(t.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glClearTexImage(t.id(), 0, format == GL_R8UI || format == GL_R32UI ? GL_RED_INTEGER : GL_RED,
-                    format == GL_R8UI || format == GL_R32UI ? GL_UNSIGNED_INT : GL_FLOAT, nullptr);
-    return t;
-}
 
 /// History formats (include/emcv/port/history.h): spvg and cv-notex one RGBA16F; cv RGBA32F + RG16F.
 GLenum format_a(kind k) { return k == kind::cv ? GL_RGBA32F : GL_RGBA16F; }
@@ -61,14 +51,14 @@ history::history(kind k, int width, int height, const gl::preprocess_options& sh
     samples_program_ = gl::program::compute(dir / (std::string("samples_") + suffix(k) + ".comp.glsl"), shaders);
     update_program_ = gl::program::compute(dir / (std::string("update_") + suffix(k) + ".comp.glsl"), shaders);
     for (int i = 0; i < 2; ++i) {
-        a_[static_cast<std::size_t>(i)] = make_texture(format_a(k), width, height);
+        a_[static_cast<std::size_t>(i)] = make_cleared_target(format_a(k), width, height);
         // The second texture exists only where the layout has one (cv); the others allocate nothing more.
-        if (k == kind::cv) b_[static_cast<std::size_t>(i)] = make_texture(format_b, width, height);
+        if (k == kind::cv) b_[static_cast<std::size_t>(i)] = make_cleared_target(format_b, width, height);
     }
-    samples_ = make_texture(GL_R32UI, width, height);
-    prev_depth_ = make_texture(GL_R32F, width, height);
-    prev_normal_ = make_texture(GL_RGBA16F, width, height);
-    prev_material_ = make_texture(GL_R8UI, width, height);  // 0 = background: every pixel starts fresh
+    samples_ = make_cleared_target(GL_R32UI, width, height);
+    prev_depth_ = make_cleared_target(GL_R32F, width, height);
+    prev_normal_ = make_cleared_target(GL_RGBA16F, width, height);
+    prev_material_ = make_cleared_target(GL_R8UI, width, height);  // 0 = background: every pixel starts fresh
 }
 
 void history::record_samples() {
