@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "options.hpp"
 
+#include "command_line.hpp"
+
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -85,19 +87,11 @@ options parse_options(const std::vector<std::string>& args) {
     options o;
     bool methods_given = false;
     for (std::size_t i = 0; i < args.size(); ++i) {
-        std::string flag = args[i];
-        std::string value;
-        bool has_inline_value = false;
-        if (const auto eq = flag.find('='); flag.rfind("--", 0) == 0 && eq != std::string::npos) {
-            value = flag.substr(eq + 1);
-            flag = flag.substr(0, eq);
-            has_inline_value = true;
-        }
-        const auto next_value = [&]() -> std::string {
-            if (has_inline_value) return value;
-            if (i + 1 >= args.size()) throw usage_error(flag + ": missing value");
-            return args[++i];
-        };
+        cli::flag_argument<usage_error> argument(args, i);
+        const std::string& flag = argument.name();
+        const std::string& value = argument.inline_value();
+        const bool has_inline_value = argument.has_inline_value();
+        const auto next_value = [&] { return argument.value(); };
         const auto no_value = [&](bool& target) {
             if (has_inline_value) fail(flag, "takes no value", value);
             target = true;

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "toy_options.hpp"
 
+#include "command_line.hpp"
+
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -71,19 +73,11 @@ std::string usage_text() {
 toy_options parse_options(const std::vector<std::string>& args) {
     toy_options o;
     for (std::size_t i = 0; i < args.size(); ++i) {
-        std::string flag = args[i];
-        std::string value;
-        bool has_inline_value = false;
-        if (const auto eq = flag.find('='); flag.rfind("--", 0) == 0 && eq != std::string::npos) {
-            value = flag.substr(eq + 1);
-            flag = flag.substr(0, eq);
-            has_inline_value = true;
-        }
-        const auto next_value = [&]() -> std::string {
-            if (has_inline_value) return value;
-            if (i + 1 >= args.size()) throw usage_error(flag + ": missing value");
-            return args[++i];
-        };
+        cli::flag_argument<usage_error> argument(args, i);
+        const std::string& flag = argument.name();
+        const std::string& value = argument.inline_value();
+        const bool has_inline_value = argument.has_inline_value();
+        const auto next_value = [&] { return argument.value(); };
         if (flag == "--help" || flag == "-h") {
             o.help = true;
         } else if (flag == "--json") {
