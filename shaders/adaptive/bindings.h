@@ -10,7 +10,7 @@
 
 // Textures read with texelFetch: last frame's history and G-buffer (the reprojection source)
 #define EMCV_ADAPTIVE_TEX_HISTORY_PREV_A 18   // spvg, cv-notex: RGBA16F stats; cv: RGBA32F (C_ff, C_fG, C_GG, count)
-#define EMCV_ADAPTIVE_TEX_HISTORY_PREV_B 19   // cv: RG16F (mean_f, mean_G); unused otherwise
+#define EMCV_ADAPTIVE_TEX_HISTORY_PREV_B 19   // cv: RG32F (mean_f, mean_G); unused otherwise
 #define EMCV_ADAPTIVE_TEX_PREV_DEPTH 26       // last frame's linear view depth (R32F)
 #define EMCV_ADAPTIVE_TEX_PREV_NORMAL 27      // last frame's world normal (RGBA16F)
 #define EMCV_ADAPTIVE_TEX_PREV_MATERIAL 28    // last frame's material index + 1 (R8UI)

@@ -2,9 +2,9 @@
 // The adaptive methods' behaviours in the renderer, on llvmpipe at CI sizes with fixed seeds (these are
 // behaviours of the algorithm, not timings):
 //   light switch  an SSS sphere whose key light switches off: over the 30 frames from the switch, cv takes at
-//                 most 1/2.5 of spvg's samples (the paper's x2.5). The issue's second bound, a PSNR within 1.5 dB
-//                 of spvg's, does not hold with the current count rule (measured -2.7 dB here): docs/renderer.md,
-//                 "The light-switch targets", has the shortfall, what limits it and why no floor meets both.
+//                 most 1/2.5 of spvg's samples (the paper's x2.5) at a PSNR within 1.5 dB of spvg's (issue 9;
+//                 cv's settling floor, docs/renderer.md "Settling after a change"); cv-notex only the samples
+//                 bound (alpha = 1 cannot tell a change from noise, so it has no settling floor)
 //   static        the same scene with a constant light: cv's mean N within 10% of spvg's, PSNR within 0.5 dB
 //   far           the built-in `far` scene (every kernel under a pixel): cv and cv-notex take 0 samples
 // PSNR as emcv-demo reports it: display images (tonemapped, sRGB) against the reference's, per frame, averaged.
@@ -111,13 +111,16 @@ const switch_measurement& measure_switch() {
 
 }  // namespace
 
-TEST_CASE("light switch: cv and cv-notex take at most 1/2.5 of spvg's samples in the 30 frames after it") {
+TEST_CASE("light switch: cv takes at most 1/2.5 of spvg's samples in the 30 frames after it, within 1.5 dB") {
     emcv::gl::context ctx = emcv::test::context_or_skip();
     emcv::gl::debug_messenger messenger;
     const switch_measurement& m = measure_switch();
-    INFO("after the switch: spvg " << m.n_spvg << " spp; cv " << m.n_cv << "; cv-notex " << m.n_notex);
+    INFO("after the switch: spvg " << m.n_spvg << " spp, " << m.db_spvg << " dB; cv " << m.n_cv << " spp, "
+                                   << m.db_cv << " dB; cv-notex " << m.n_notex << " spp, " << m.db_notex << " dB");
     CHECK(m.n_spvg > 16.0);  // SPVG reads the switch as noise: its count jumps
     CHECK(m.n_cv <= m.n_spvg / 2.5);
+    CHECK(m.db_cv >= m.db_spvg - 1.5);
+    CHECK(m.n_cv > 8.5);  // the settling floor acts: cv spends above the static floor after the change
     CHECK(m.n_notex <= m.n_spvg / 2.5);
     CHECK(messenger.error_count() == 0);
 }

@@ -27,9 +27,9 @@ namespace emcv::demo::adaptive {
 
 namespace {
 
-/// History formats (include/emcv/port/history.h): spvg and cv-notex one RGBA16F; cv RGBA32F + RG16F.
+/// History formats (include/emcv/port/history.h): spvg and cv-notex one RGBA16F; cv RGBA32F + RG32F.
 GLenum format_a(kind k) { return k == kind::cv ? GL_RGBA32F : GL_RGBA16F; }
-constexpr GLenum format_b = GL_RG16F;
+constexpr GLenum format_b = GL_RG32F;
 
 const char* suffix(kind k) {
     switch (k) {

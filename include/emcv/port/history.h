@@ -113,14 +113,14 @@ EMCV_FN int emcv_history_count_spvg(EMCV_IN(EmcvMovingStats) s) {
     return emcv_sample_count(s.variance, EMCV_HISTORY_TARGET, EMCV_HISTORY_SPVG_N_MIN, EMCV_HISTORY_N_MAX);
 }
 
-/// The control-variate methods' count from a residual variance: 0 samples when the residual variance is 0
-/// (f has never left alpha G: a sub-pixel kernel, whose scattered value is the pixel's own diffuse), else
-/// SPVG's clamp(var / 1e-4, 8, 64), NaN -> 64. The floor 8 stays for every pixel that has any residual
-/// variance, so a static scene is sampled as SPVG samples it (docs/renderer.md: a plain n_min = 0 took 1
-/// sample per pixel on light-off's static frames, 13 dB under SPVG); the gain comes from the residual
-/// variance staying low when the light changes.
+/// The control-variate methods' count from a residual variance: SPVG's clamp(var / 1e-4, 8, 64), NaN -> 64.
+/// The floor 8 stays, so a static scene is sampled as SPVG samples it (docs/renderer.md: a plain n_min = 0
+/// took 1 sample per pixel on light-off's static frames, 13 dB under SPVG); the gain comes from the residual
+/// variance staying low when the light changes. The 0 samples of n_min = 0 are decided by the kernel's
+/// footprint (emcv_history_sub_pixel), not by a zero variance: a 64-sample estimate stored in half precision
+/// repeats bit for bit from one frame to the next, and a variance of exactly 0 read as "no samples" showed
+/// plain diffuse on 70% of static's SSS pixels at frame 2 (docs/renderer.md).
 EMCV_FN int emcv_history_count_residual(float residual_variance) {
-    if (residual_variance == 0.0f) return 0;
     return emcv_sample_count(residual_variance, EMCV_HISTORY_TARGET, EMCV_HISTORY_SPVG_N_MIN, EMCV_HISTORY_N_MAX);
 }
 
@@ -130,10 +130,19 @@ EMCV_FN int emcv_history_count_notex(EMCV_IN(EmcvMovingStats) s) {
     return emcv_history_count_residual(s.variance);
 }
 
-/// cv: Var(f - alpha G) = C_ff - C_fG^2 / C_GG from the EMCM (the joint optimum of N and alpha).
+/// cv's floor while its history is settling after a light change (docs/renderer.md, "Settling after a change").
+#define EMCV_HISTORY_CV_SETTLE_N 11
+
+/// cv: Var(f - alpha G) = C_ff - C_fG^2 / C_GG from the EMCM (the joint optimum of N and alpha), with the
+/// settling floor while the light change still explains more of f's variance than the residual does
+/// (C_fG^2 / C_GG > the residual variance). A static light has C_GG = 0 and never settles.
 EMCV_FN int emcv_history_count_cv(EMCV_IN(EmcvEmcm2) s) {
     if (s.count < 2u) return EMCV_HISTORY_N_MAX;
-    return emcv_history_count_residual(emcv_cv_optimal_residual_variance_emcm2(s));
+    float residual = emcv_cv_optimal_residual_variance_emcm2(s);
+    int n = emcv_history_count_residual(residual);
+    EMCV_PRECISE float explained = s.cov.x - residual;
+    if (explained > residual) n = max(n, EMCV_HISTORY_CV_SETTLE_N);
+    return n;
 }
 
 EMCV_PORT_END
