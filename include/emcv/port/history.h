@@ -8,9 +8,11 @@
 //                              The variance is stored divided by the target so that what decides N stays far
 //                              above binary16's smallest normal (6.1e-5; a variance under it read as 0 would
 //                              give N = 0 under n_min = 0).
-//              cv              RGBA32F (C_ff, C_fG, C_GG, count) + RG16F (mean_f, mean_G): the covariances stay
+//              cv              RGBA32F (C_ff, C_fG, C_GG, count) + RG32F (mean_f, mean_G): the covariances stay
 //                              fp32 because C_ff - C_fG^2 / C_GG cancels (binary16 covariances gave N = 0 on
-//                              0.2% of flicker frames in the study); the means are exact enough in half.
+//                              0.2% of flicker frames in the study); the means too, because G is an in-frame
+//                              constant: a mean of G rounded to half makes a static G push G - half(G) every
+//                              frame, a phantom C_GG and alpha (measured on `static`).
 //            The count saturates at EMCV_HISTORY_MAX_COUNT (exact in binary16). A texel that is not finite, has
 //            a negative variance or count, is refused: the pixel restarts (never spreads NaN/Inf).
 //            A history younger than two frames has no variance yet and asks for n_max (as on a reset), not
