@@ -316,13 +316,14 @@ def plot_switch(rows_by_scene, device):
             rs = sorted((r for r in rows if r["method"] == m), key=lambda r: int(r["frame"]))
             fr = [int(r["frame"]) for r in rs]
             axes[0].plot(fr, [to_float(r["mean_spp"]) for r in rs], color=c, label=m)
-            axes[1].plot(fr, [to_float(r["sss_ms"]) for r in rs], color=c, label=m)
+            # Frame 0 compiles the shaders and warms up (100x a later frame): left out so the rest can be read.
+            axes[1].plot(fr[1:], [to_float(r["sss_ms"]) for r in rs[1:]], color=c, label=m)
         rs = sorted((r for r in rows if r["method"] == "cv"), key=lambda r: int(r["frame"]))
         lights = [parse_lights(r["lights"]) for r in rs]
         for name in (lights[0].keys() if lights else []):
             axes[2].step([int(r["frame"]) for r in rs], [l[name] for l in lights], where="post", label=name)
         axes[0].set_ylabel("mean samples\nper SSS pixel")
-        axes[1].set_ylabel("SSS pass ms")
+        axes[1].set_ylabel("SSS pass ms\n(from frame 1)")
         axes[2].set_ylabel("light\nintensity")
         axes[2].set_xlabel("frame")
         axes[0].legend(fontsize=8, ncol=4)
