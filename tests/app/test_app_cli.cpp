@@ -56,20 +56,6 @@ void check_rejected(const std::string& args, int status, const std::string& must
     CHECK_FALSE(fs::exists(out));
 }
 
-/// True when the run could not get an OpenGL context because there is no display at all (no EGL device, no
-/// X server): the GPU-dependent cases skip then, as tests/gpu does.
-bool no_display(const emcv_test::command_result& r) {
-    return r.exit_code == 1 && r.err.find("(no display)") != std::string::npos;
-}
-
-std::vector<std::string> split(const std::string& line, char separator) {
-    std::vector<std::string> fields;
-    std::stringstream in(line);
-    for (std::string f; std::getline(in, f, separator);) fields.push_back(f);
-    if (!line.empty() && line.back() == separator) fields.emplace_back();
-    return fields;
-}
-
 }  // namespace
 
 TEST_CASE("the help text (--help) lists every flag and exits 0", "[app][cli]") {
@@ -157,7 +143,7 @@ TEST_CASE("an image holding NaN or Inf stops the run: one line, exit 1, nothing 
     const emcv_test::command_result r = run_demo("--scene '" + data_dir +
                                                  "/overflow.json' --size 32x32 --frames 2 --method diffuse --out '" +
                                                  out.string() + "'");
-    if (no_display(r)) SKIP("no OpenGL display: " << r.err);
+    if (emcv_test::no_display(r)) SKIP("no OpenGL display: " << r.err);
     INFO(r.err);
     CHECK(r.exit_code == 1);
     CHECK(count_lines(r.err) == 1);
@@ -205,7 +191,7 @@ TEST_CASE("a small headless run writes frames and complete metrics files", "[app
     const emcv_test::command_result r = run_demo("--scene '" + data_dir +
                                                  "/tiny.json' --size 64x64 --frames 3 --method diffuse,burley-4 "
                                                  "--exr --seed 7 --out '" + out.string() + "'");
-    if (no_display(r)) SKIP("no OpenGL display: " << r.err);
+    if (emcv_test::no_display(r)) SKIP("no OpenGL display: " << r.err);
     INFO(r.err << r.out);
     REQUIRE(r.exit_code == 0);
     CHECK(r.err.empty());  // stderr is not a terminal here: no progress bar
@@ -230,7 +216,7 @@ TEST_CASE("a small headless run writes frames and complete metrics files", "[app
     std::size_t rows = 0;
     while (std::getline(csv, line)) {
         INFO(line);
-        const std::vector<std::string> f = split(line, ',');
+        const std::vector<std::string> f = emcv_test::split_fields(line, ',');
         REQUIRE(f.size() == 10);
         ++rows;
         const bool reference = f[1] == "reference";
@@ -268,7 +254,7 @@ TEST_CASE("the metrics-only flag (--no-frames) writes metrics.csv and metrics.js
     const emcv_test::command_result r = run_demo("--scene '" + data_dir +
                                                  "/tiny.json' --size 32x32 --frames 2 --method burley-4 --no-frames --out '" +
                                                  out.string() + "'");
-    if (no_display(r)) SKIP("no OpenGL display: " << r.err);
+    if (emcv_test::no_display(r)) SKIP("no OpenGL display: " << r.err);
     INFO(r.err << r.out);
     REQUIRE(r.exit_code == 0);
     CHECK(fs::is_regular_file(out / "metrics.csv"));
@@ -288,7 +274,8 @@ TEST_CASE("the progress bar is drawn when stderr is a terminal", "[app][cli][gl]
     const emcv_test::command_result r = emcv_test::run_command(
         "script -qec \"'" + std::string(EMCV_DEMO_EXE) + "' --scene '" + data_dir +
         "/tiny.json' --size 16x16 --frames 3 --method diffuse\" /dev/null");
-    if (no_display(r) || r.out.find("(no display)") != std::string::npos) SKIP("no OpenGL display: " << r.out);
+    if (emcv_test::no_display(r) || r.out.find("(no display)") != std::string::npos)
+        SKIP("no OpenGL display: " << r.out);
     INFO(r.out << r.err);
     REQUIRE(r.exit_code == 0);
     CHECK(r.out.find("3/3 frames") != std::string::npos);
@@ -352,7 +339,7 @@ TEST_CASE("adaptive methods write N heatmaps and cv alpha heatmaps and a static 
     const emcv_test::command_result r = run_demo("--scene '" + data_dir +
                                                  "/tiny.json' --size 48x48 --frames 4 --method diffuse,spvg,cv "
                                                  "--seed 7 --out '" + out.string() + "'");
-    if (no_display(r)) SKIP("no OpenGL display: " << r.err);
+    if (emcv_test::no_display(r)) SKIP("no OpenGL display: " << r.err);
     INFO(r.err << r.out);
     REQUIRE(r.exit_code == 0);
     for (int f = 0; f < 4; ++f) {
@@ -377,7 +364,7 @@ TEST_CASE("adaptive methods write N heatmaps and cv alpha heatmaps and a static 
 TEST_CASE("with spvg and cv on a light switch the summary compares them from the switch frame", "[app][cli][gl]") {
     const emcv_test::command_result r =
         run_demo("--scene '" + data_dir + "/switch.json' --size 32x32 --method spvg,cv --seed 7");
-    if (no_display(r)) SKIP("no OpenGL display: " << r.err);
+    if (emcv_test::no_display(r)) SKIP("no OpenGL display: " << r.err);
     INFO(r.err << r.out);
     REQUIRE(r.exit_code == 0);
     // switch.json's key light steps 3 -> 0 at frame 3, and the scene has 6 frames: the window is frames 3-5.

@@ -33,17 +33,10 @@ struct row {
     std::size_t sss_pixels = 0;
 };
 
-std::vector<std::string> split(const std::string& line, char separator) {
-    std::vector<std::string> fields;
-    std::stringstream in(line);
-    for (std::string f; std::getline(in, f, separator);) fields.push_back(f);
-    return fields;
-}
-
 /// Runs emcv-eval; skips when there is no OpenGL display at all (as tests/gpu does).
 std::vector<row> run_eval(const std::string& args) {
     const emcv_test::command_result r = emcv_test::run_command("'" + std::string(EMCV_EVAL_EXE) + "' " + args);
-    if (r.exit_code == 1 && r.err.find("(no display)") != std::string::npos) SKIP("no OpenGL display: " << r.err);
+    if (emcv_test::no_display(r)) SKIP("no OpenGL display: " << r.err);
     INFO("emcv-eval " << args << "\n" << r.err);
     REQUIRE(r.exit_code == 0);
     std::istringstream in(r.out);
@@ -52,7 +45,7 @@ std::vector<row> run_eval(const std::string& args) {
     REQUIRE(line == "scene,width,height,sss_scale,method,frame,sss_ms,frame_ms,mean_spp,max_spp,sss_pixels,lights");
     std::vector<row> rows;
     while (std::getline(in, line)) {
-        const std::vector<std::string> f = split(line, ',');
+        const std::vector<std::string> f = emcv_test::split_fields(line, ',');
         INFO(line);
         REQUIRE(f.size() == 12);
         row x;
@@ -73,7 +66,7 @@ std::vector<double> read_csv_image(const fs::path& file) {
     std::ifstream in(file);
     std::vector<double> v;
     for (std::string line; std::getline(in, line);)
-        for (const std::string& cell : split(line, ',')) v.push_back(std::stod(cell));
+        for (const std::string& cell : emcv_test::split_fields(line, ',')) v.push_back(std::stod(cell));
     return v;
 }
 

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace emcv_test {
 
@@ -43,6 +44,21 @@ inline command_result run_command(const std::string& command) {
     fs::remove(out, ignored);
     fs::remove(err, ignored);
     return r;
+}
+
+/// True when a tool could not get an OpenGL context because there is no display at all (no EGL device, no X
+/// server; gl::context says "(no display)"): the GPU-dependent cases skip then, as tests/gpu does.
+inline bool no_display(const command_result& r) {
+    return r.exit_code == 1 && r.err.find("(no display)") != std::string::npos;
+}
+
+/// The fields of one CSV line (no quoting); a trailing separator gives a trailing empty field.
+inline std::vector<std::string> split_fields(const std::string& line, char separator = ',') {
+    std::vector<std::string> fields;
+    std::stringstream in(line);
+    for (std::string f; std::getline(in, f, separator);) fields.push_back(f);
+    if (!line.empty() && line.back() == separator) fields.emplace_back();
+    return fields;
 }
 
 }  // namespace emcv_test
