@@ -13,6 +13,7 @@
 #include "heatmap.hpp"
 #include "image_metrics.hpp"
 #include "progress.hpp"
+#include "render_flags.hpp"
 #include "render/renderer.hpp"
 
 namespace emcv::demo::app {
@@ -37,15 +38,6 @@ std::string frame_file(int frame, const char* extension, const char* stem = "fra
     std::snprintf(name, sizeof name, "%s-%04d.%s", stem, frame, extension);
     return name;
 }
-
-bool is_adaptive(const method& m) {
-    return m.type == method::kind::spvg || m.type == method::kind::cv || m.type == method::kind::cv_notex;
-}
-
-/// Colour scales of the heatmaps (docs/demo.md, Outputs): N over SPVG's N_max = 64; alpha over [0, 2], so
-/// alpha = 1 (f follows G one to one) is the middle colour, green.
-constexpr float samples_heatmap_max = 64.0f;
-constexpr float alpha_heatmap_max = 2.0f;
 
 void make_output_directory(const fs::path& dir) {
     std::error_code ec;
@@ -88,12 +80,7 @@ std::vector<method> methods_to_render(const std::vector<method>& requested) {
 }
 
 run_result run_headless(const scene& s, const options& o, int frames) {
-    render_options ro;
-    ro.width = o.width;
-    ro.height = o.height;
-    ro.seed = o.seed;
-    ro.approximate_inverse_cdf = o.approximate_cdf;
-    ro.timing_mode = timing::per_frame;
+    const render_options ro = make_render_options(o, timing::per_frame);
 
     run_result result;
     std::vector<method_run> runs;
@@ -147,11 +134,11 @@ run_result run_headless(const scene& s, const options& o, int frames) {
                 const fs::path dir = *o.out / run.m.name();
                 pending.push_back({dir / frame_file(frame, "png"), display});
                 if (o.exr) pending.push_back({dir / frame_file(frame, "exr"), linear});
-                // issue 9: per-pixel N of the adaptive methods, and cv's alpha (the other methods have none).
-                if (is_adaptive(run.m))
+                // The heatmaps the method's row asks for: N per pixel, the control-variate coefficient.
+                if (row_of(run.m).samples_heatmap)
                     pending.push_back({dir / frame_file(frame, "png", "samples"),
                                        sample_heatmap(run.r.sample_counts(), samples_heatmap_max)});
-                if (run.m.type == method::kind::cv)
+                if (row_of(run.m).alpha_heatmap)
                     pending.push_back({dir / frame_file(frame, "png", "alpha"),
                                        sample_heatmap(run.r.cv_alpha(), alpha_heatmap_max)});
             }

@@ -38,14 +38,30 @@ bool list_scenes(std::ostream& out) {
     return all_loaded;
 }
 
+void list_methods(std::ostream& out) {
+    static const char* const passes[] = {"none", "burley", "separable", "adaptive"};
+    for (const method_row& r : method_table()) {
+        const std::string name = r.in_all >= 0 ? method{r.type, r.in_all}.name() : std::string(r.name);
+        out << name << '\t' << passes[static_cast<int>(r.passes)] << '\t' << r.help << '\n';
+    }
+}
+
 void print_passes(std::ostream& out, const scene& s, const std::vector<method>& methods, int frames, int width,
                   int height) {
+    // The renderer's own planner, frame after frame as the renderer plans them (the reference's reuse
+    // included): what is printed is what runs.
+    const auto names = [&](const std::vector<planned_pass>& plan) {
+        std::vector<std::string> out_names;
+        for (const planned_pass& p : plan) out_names.push_back(pass_name(s, p));
+        return out_names;
+    };
     for (const method& m : methods) {
         out << "method " << m.name() << ":\n";
-        std::vector<std::string> current = pass_list(s, m, 0, width, height);
+        frame_planner planner(s, m, width, height);
+        std::vector<std::string> current = names(planner.plan(0));
         int first = 0;
         for (int frame = 1; frame < frames; ++frame) {
-            std::vector<std::string> passes = pass_list(s, m, frame, width, height);
+            std::vector<std::string> passes = names(planner.plan(frame));
             if (passes == current) continue;
             print_range(out, first, frame - 1, current);
             current = std::move(passes);

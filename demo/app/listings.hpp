@@ -15,6 +15,10 @@ namespace emcv::demo::app {
 /// its error instead (and makes the function return false).
 bool list_scenes(std::ostream& out);
 
+/// One line per row of the method table: the name `--method all` uses (or the bare name), a tab, its SSS
+/// passes (none, burley, separable, adaptive), a tab, its help line. Scripts read their method lists here.
+void list_methods(std::ostream& out);
+
 /// For each method: "method M:" then one line per run of frames with the same pass list,
 /// "  frames A-B: pass, pass, ...".
 void print_passes(std::ostream& out, const scene& s, const std::vector<method>& methods, int frames, int width,

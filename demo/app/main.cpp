@@ -54,6 +54,10 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (o.list_scenes) return list_scenes(std::cout) ? 0 : 1;
+        if (o.list_methods) {
+            list_methods(std::cout);
+            return 0;
+        }
         s = load_scene_argument(o.scene);
         if (o.out) check_output_directory(*o.out);
     } catch (const usage_error& e) {
@@ -86,7 +90,8 @@ int main(int argc, char** argv) {
             const run_result result = run_headless(s, o, frames);
             std::vector<std::string> notes;
             if (const std::optional<int> change = first_light_change(s, frames))
-                if (std::optional<std::string> line = cv_vs_spvg_after_change(result.rows, *change))
+                if (std::optional<std::string> line = compare_after_change(result.rows, *change, method{method::kind::cv}.name(),
+                                                                                method{method::kind::spvg}.name()))
                     notes.push_back(std::move(*line));
             std::cout << "scene " << s.name << ", " << o.width << "x" << o.height << ", " << frames
                       << " frames, seed " << o.seed << ", " << context.renderer() << '\n'

@@ -2,10 +2,12 @@
 #include "options.hpp"
 
 #include "command_line.hpp"
+#include "render/tunables.hpp"
 
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <system_error>
@@ -49,10 +51,8 @@ void parse_size(const std::string& flag, const std::string& value, int& width, i
 method parse_method_item(const std::string& item, const std::string& list) {
     const std::optional<method> m = emcv::demo::parse_method(item);
     if (!m) {
-        std::string names;
-        for (const method& a : all_methods()) names += a.name() + ", ";
-        throw usage_error("--method: unknown method '" + item + "' in '" + list + "' (expected " + names +
-                          "burley-N with N in 1..1024, separable-11|17|25, or all)");
+        throw usage_error("--method: unknown method '" + item + "' in '" + list + "' (expected " +
+                          accepted_method_names() + ", or all)");
     }
     return *m;
 }
@@ -67,8 +67,8 @@ std::string usage_text() {
            "and per-frame metrics, and prints a summary table.\n"
            "\n"
            "  --scene FILE|NAME   a scene file, or a built-in scene name (default light-off; see --list-scenes)\n"
-           "  --method M[,M...]   diffuse, burley-N (N = 1..1024), separable[-11|-17|-25], reference, or all\n"
-           "                      (default all = " + all + ")\n"
+           "  --method M[,M...]   one or more of these, or all (default all = " + all + "):\n" +
+           method_help_lines(22) +
            "  --frames N          frames to render, 1..100000 (default: the scene's length)\n"
            "  --size WxH          image size, each side 1..8192, at most 64000000 pixels (default 256x256)\n"
            "  --out DIR           write frames (PNG), metrics.csv and metrics.json under DIR (default: none)\n"
@@ -76,9 +76,12 @@ std::string usage_text() {
            "  --exr               also write linear HDR frames as EXR\n"
            "  --no-frames         with --out: write metrics.csv/json only, no frames (large benchmark runs)\n"
            "  --approximate-cdf   burley-N draws radii with SPVG's inverse-CDF fit instead of the exact inverse\n"
+           "  --define NAME=VALUE set a tunable of the port headers for every shader (repeatable; names and\n"
+           "                      ranges: docs/renderer.md, Tunables)\n"
            "  --window            show the renderer in a window (keys: see docs/demo.md); --frames ends it\n"
            "  --list-scenes       list the built-in scenes with their descriptions\n"
            "  --print-passes      print the pass list of each frame where it changes, render nothing\n"
+           "  --list-methods      print every method's name, one per line (what --method all renders first)\n"
            "  --help              print this text\n"
            "Bad input exits with status 2 and writes nothing.\n";
 }
@@ -103,6 +106,14 @@ options parse_options(const std::vector<std::string>& args) {
         else if (flag == "--approximate-cdf") no_value(o.approximate_cdf);
         else if (flag == "--list-scenes") no_value(o.list_scenes);
         else if (flag == "--print-passes") no_value(o.print_passes);
+        else if (flag == "--list-methods") no_value(o.list_methods);
+        else if (flag == "--define") {
+            try {
+                add_define(o.defines, next_value());
+            } catch (const tunable_error& e) {
+                throw usage_error(e.what());
+            }
+        }
         else if (flag == "--scene") {
             o.scene = next_value();
             if (o.scene.empty()) fail(flag, "expected a file or a built-in scene name", o.scene);

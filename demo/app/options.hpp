@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "render/renderer.hpp"
@@ -31,6 +32,9 @@ struct options {
     bool no_frames = false;                    ///< --no-frames: with --out, write the metrics only (benchmarks)
     bool window = false;                       ///< --window: interactive GLFW window
     bool approximate_cdf = false;              ///< --approximate-cdf: SPVG's inverse-CDF fit for burley-N
+    /// --define NAME=VALUE (repeatable): port tunables, validated (render/tunables.hpp), later ones win.
+    std::vector<std::pair<std::string, std::string>> defines;
+    bool list_methods = false;                 ///< --list-methods: the method table, one name per line
     bool list_scenes = false;
     bool print_passes = false;
     bool help = false;

@@ -87,17 +87,18 @@ std::vector<method_summary> summarize(const std::vector<metrics_row>& rows, cons
     return out;
 }
 
-std::optional<std::string> cv_vs_spvg_after_change(const std::vector<metrics_row>& rows, int first_change) {
+std::optional<std::string> compare_after_change(const std::vector<metrics_row>& rows, int first_change,
+                                                const std::string& name, const std::string& baseline) {
     struct window_means {
         int frames = 0;
         double spp = 0.0, sss_ms = 0.0;
         std::vector<std::optional<double>> psnr;
     };
     const int end = first_change + switch_window_frames;
-    auto means_of = [&](const char* name) {
+    auto means_of = [&](const std::string& method) {
         window_means m;
         for (const metrics_row& r : rows) {
-            if (r.method != name || r.frame < first_change || r.frame >= end) continue;
+            if (r.method != method || r.frame < first_change || r.frame >= end) continue;
             ++m.frames;
             m.spp += r.mean_spp;
             m.sss_ms += r.sss_ms;
@@ -105,11 +106,11 @@ std::optional<std::string> cv_vs_spvg_after_change(const std::vector<metrics_row
         }
         return m;
     };
-    const window_means spvg = means_of("spvg"), cv = means_of("cv");
+    const window_means spvg = means_of(baseline), cv = means_of(name);
     if (spvg.frames == 0 || cv.frames == 0) return std::nullopt;
     int last = first_change;
     for (const metrics_row& r : rows)
-        if (r.method == "cv" && r.frame >= first_change && r.frame < end) last = std::max(last, r.frame);
+        if (r.method == name && r.frame >= first_change && r.frame < end) last = std::max(last, r.frame);
 
     auto ratio = [](double a, double b) -> std::string {
         if (!(b > 0.0)) return "-";
@@ -126,11 +127,11 @@ std::optional<std::string> cv_vs_spvg_after_change(const std::vector<metrics_row
     }
     char line[320];
     std::snprintf(line, sizeof line,
-                  "cv vs spvg, frames %d-%d (from the first light change at frame %d): samples %s, SSS pass time "
-                  "%s, PSNR %s (cv %s, spvg %s)",
-                  first_change, last, first_change, ratio(cv.spp / cv.frames, spvg.spp / spvg.frames).c_str(),
-                  ratio(cv.sss_ms / cv.frames, spvg.sss_ms / spvg.frames).c_str(), gap.c_str(), psnr_text(db_cv).c_str(),
-                  psnr_text(db_spvg).c_str());
+                  "%s vs %s, frames %d-%d (from the first light change at frame %d): samples %s, SSS pass time "
+                  "%s, PSNR %s (%s %s, %s %s)",
+                  name.c_str(), baseline.c_str(), first_change, last, first_change, ratio(cv.spp / cv.frames, spvg.spp / spvg.frames).c_str(),
+                  ratio(cv.sss_ms / cv.frames, spvg.sss_ms / spvg.frames).c_str(), gap.c_str(), name.c_str(),
+                  psnr_text(db_cv).c_str(), baseline.c_str(), psnr_text(db_spvg).c_str());
     return std::string(line);
 }
 

@@ -35,14 +35,17 @@ double percentile(std::vector<double> values, double p);
 std::vector<method_summary> summarize(const std::vector<metrics_row>& rows, const std::vector<std::string>& methods,
                                       int timing_from_frame = 1);
 
-/// The frames cv is compared with spvg over after a light change (issue 9: "the 30 frames from the switch").
+/// The frames a method is compared with its baseline over after a light change (the paper's teaser: the 30
+/// frames from the switch).
 inline constexpr int switch_window_frames = 30;
 
-/// issue 9's line: cv against spvg over the `switch_window_frames` frames from `first_change` (the first frame
-/// at which a light's intensity changes), cut at the last frame rendered. Sample ratio (mean over frames of
-/// mean_spp), SSS-pass-time ratio (mean sss_ms) and PSNR gap (mean over frames of psnr_db, cv minus spvg).
-/// Empty when spvg or cv did not run, or no frame of either lies in the window.
-std::optional<std::string> cv_vs_spvg_after_change(const std::vector<metrics_row>& rows, int first_change);
+/// The summary's closing line: `name` (cv) against `baseline` (spvg) over the `switch_window_frames` frames
+/// from `first_change` (the first frame at which a light's intensity changes), cut at the last frame rendered.
+/// Sample ratio (mean over frames of mean_spp), SSS-pass-time ratio (mean sss_ms) and PSNR gap (mean over
+/// frames of psnr_db, name minus baseline). Empty when either did not run, or no frame of either lies in the
+/// window.
+std::optional<std::string> compare_after_change(const std::vector<metrics_row>& rows, int first_change,
+                                                const std::string& name, const std::string& baseline);
 
 /// The table, then each of `notes` on its own line (issue 9: the cv vs spvg ratio line after the switch).
 std::string format_summary(const std::vector<method_summary>& summaries, const std::vector<std::string>& notes = {});

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "window_run.hpp"
 
+#include "render_flags.hpp"
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -119,12 +121,7 @@ int run_window(gl::context& ctx, const scene& s, const options& o, std::optional
     glfwSetWindowUserPointer(window, &state);
     glfwSetKeyCallback(window, on_key);
 
-    render_options ro;
-    ro.width = o.width;
-    ro.height = o.height;
-    ro.seed = o.seed;
-    ro.approximate_inverse_cdf = o.approximate_cdf;
-    ro.timing_mode = timing::asynchronous;  // never stall the interactive loop on timer queries
+    const render_options ro = make_render_options(o, timing::asynchronous);  // never stall on timer queries
     std::size_t method_index = 0;
     renderer r(s, o.methods[method_index], ro);
     const blit_source display = make_blit_source(r.display_texture(), o.width, o.height);
@@ -165,7 +162,7 @@ int run_window(gl::context& ctx, const scene& s, const options& o, std::optional
         }
         const frame_stats stats = r.render(frame);
         if (state.heatmap) {
-            const gl::float_image colours = sample_heatmap(r.sample_counts(), 64.0f);
+            const gl::float_image colours = sample_heatmap(r.sample_counts(), samples_heatmap_max);
             glTextureSubImage2D(heat.texture.id(), 0, 0, 0, o.width, o.height, GL_RGBA, GL_FLOAT,
                                 colours.pixels.data());
             blit_to_window(heat, o.width, o.height);

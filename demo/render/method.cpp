@@ -1,53 +1,97 @@
 // SPDX-License-Identifier: MIT
-// Method names on the command line <-> emcv::demo::method.
-#include "renderer.hpp"
+// The method table (method.hpp) and what derives from it: names, parsing, `all`, help lines.
+#include "method.hpp"
 
+#include <algorithm>
 #include <charconv>
+#include <stdexcept>
 
 namespace emcv::demo {
 
+const std::vector<method_row>& method_table() {
+    using k = method::kind;
+    static const std::vector<method_row> rows{
+        {k::diffuse, "diffuse", "no scattering: the lit diffuse as it is (the lower bound of cost)", {}, 0,
+         sss_passes::none, history_layout::none, "", false, false},
+        {k::burley, "burley", "Burley screen-space SSS, a fixed N samples per SSS pixel",
+         {"samples per SSS pixel", 1, 1024, {}, 0, true}, 16, sss_passes::burley, history_layout::none, "", false,
+         false},
+        {k::separable, "separable", "separable SSS (two 1-D passes) with 11, 17 or 25 taps (default 17)",
+         {"taps", 11, 25, {11, 17, 25}, default_separable_taps, true}, default_separable_taps,
+         sss_passes::separable, history_layout::none, "", false, false},
+        {k::reference, "reference", "Burley with 1024 samples per pixel, reused while its inputs hold",
+         {"samples per pixel", 1, 1 << 20, {}, default_reference_samples, false}, default_reference_samples,
+         sss_passes::burley, history_layout::none, "", false, false},
+        {k::spvg, "spvg", "adaptive: N from the moving variance of f (SPVG 2020)", {}, 0, sss_passes::adaptive,
+         history_layout::moving_stats, "EMCV_ADAPTIVE_SPVG", true, false},
+        {k::cv, "cv", "adaptive: N from the residual variance of the control variate, EMCM over (f, G)", {}, 0,
+         sss_passes::adaptive, history_layout::emcm2, "EMCV_ADAPTIVE_CV", true, true},
+        {k::cv_notex, "cv-notex", "adaptive: N from the moving variance of f - G (alpha = 1)", {}, 0,
+         sss_passes::adaptive, history_layout::moving_stats, "EMCV_ADAPTIVE_NOTEX", true, false},
+    };
+    return rows;
+}
+
+const method_row& row_of(method::kind type) {
+    for (const method_row& r : method_table())
+        if (r.type == type) return r;
+    throw std::logic_error("method table: no row for a method kind");
+}
+
 std::string method::name() const {
-    switch (type) {
-        case kind::diffuse: return "diffuse";
-        case kind::burley: return "burley-" + std::to_string(samples);
-        case kind::separable: return "separable-" + std::to_string(samples);
-        case kind::reference:
-            return samples == default_reference_samples ? "reference" : "reference-" + std::to_string(samples);
-        case kind::spvg: return "spvg";
-        case kind::cv: return "cv";
-        case kind::cv_notex: return "cv-notex";
-    }
-    return "unknown";
+    const method_row& r = row_of(type);
+    const bool bare = r.parameter.meaning.empty() ||
+                      (r.parameter.default_value != 0 && samples == r.parameter.default_value && !r.parameter.on_command_line);
+    if (bare) return std::string(r.name);
+    return std::string(r.name) + "-" + std::to_string(samples);
 }
 
 namespace {
 
-/// The integer after `prefix` when the whole of `text` is prefix + digits.
+/// The integer after `prefix` + '-' when the whole of `text` is that prefix, a dash and digits.
 std::optional<int> suffix_number(std::string_view text, std::string_view prefix) {
-    if (text.size() <= prefix.size() || text.substr(0, prefix.size()) != prefix) return std::nullopt;
-    const std::string_view digits = text.substr(prefix.size());
+    if (text.size() <= prefix.size() + 1 || text.substr(0, prefix.size()) != prefix || text[prefix.size()] != '-')
+        return std::nullopt;
+    const std::string_view digits = text.substr(prefix.size() + 1);
     int value = 0;
     const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
     if (error != std::errc() || end != digits.data() + digits.size()) return std::nullopt;
     return value;
 }
 
+bool parameter_accepts(const method_parameter& p, int value) {
+    if (!p.allowed.empty()) return std::find(p.allowed.begin(), p.allowed.end(), value) != p.allowed.end();
+    return value >= p.minimum && value <= p.maximum;
+}
+
+/// "burley-N (N = 1..1024)", "separable[-11|-17|-25]", "cv".
+std::string spelled(const method_row& r) {
+    std::string out(r.name);
+    const method_parameter& p = r.parameter;
+    if (p.meaning.empty() || !p.on_command_line) return out;
+    if (!p.allowed.empty()) {
+        std::string list;
+        for (int v : p.allowed) list += (list.empty() ? "-" : "|-") + std::to_string(v);
+        return p.default_value != 0 ? out + "[" + list + "]" : out + list;
+    }
+    return out + "-N (N = " + std::to_string(p.minimum) + ".." + std::to_string(p.maximum) + ")";
+}
+
 }  // namespace
 
 std::optional<method> parse_method(std::string_view text) {
-    if (text == "diffuse") return method{method::kind::diffuse, 0};
-    if (text == "reference") return make_reference(default_reference_samples);
-    if (text == "spvg") return method{method::kind::spvg, 0};
-    if (text == "cv") return method{method::kind::cv, 0};
-    if (text == "cv-notex") return method{method::kind::cv_notex, 0};
-    if (text == "separable") return method{method::kind::separable, default_separable_taps};
-    if (const auto taps = suffix_number(text, "separable-")) {
-        if (*taps == 11 || *taps == 17 || *taps == 25) return method{method::kind::separable, *taps};
-        return std::nullopt;
-    }
-    if (const auto n = suffix_number(text, "burley-")) {
-        if (*n >= 1 && *n <= 1024) return method{method::kind::burley, *n};
-        return std::nullopt;
+    for (const method_row& r : method_table()) {
+        const method_parameter& p = r.parameter;
+        if (text == r.name) {
+            if (p.meaning.empty()) return method{r.type, 0};
+            if (p.default_value != 0) return method{r.type, p.default_value};
+            return std::nullopt;
+        }
+        if (p.meaning.empty() || !p.on_command_line) continue;
+        if (const std::optional<int> n = suffix_number(text, r.name)) {
+            if (parameter_accepts(p, *n)) return method{r.type, *n};
+            return std::nullopt;
+        }
     }
     return std::nullopt;
 }
@@ -55,9 +99,27 @@ std::optional<method> parse_method(std::string_view text) {
 method make_reference(int samples) { return method{method::kind::reference, samples}; }
 
 std::vector<method> all_methods() {
-    return {method{method::kind::diffuse, 0}, method{method::kind::burley, 16},
-            method{method::kind::separable, default_separable_taps}, make_reference(default_reference_samples),
-            method{method::kind::spvg, 0}, method{method::kind::cv, 0}, method{method::kind::cv_notex, 0}};
+    std::vector<method> out;
+    for (const method_row& r : method_table())
+        if (r.in_all >= 0) out.push_back(method{r.type, r.in_all});
+    return out;
+}
+
+std::string accepted_method_names() {
+    std::string out;
+    for (const method_row& r : method_table()) out += (out.empty() ? "" : ", ") + spelled(r);
+    return out;
+}
+
+std::string method_help_lines(std::size_t indent) {
+    std::size_t width = 0;
+    for (const method_row& r : method_table()) width = std::max(width, spelled(r).size());
+    std::string out;
+    for (const method_row& r : method_table()) {
+        const std::string name = spelled(r);
+        out += std::string(indent, ' ') + name + std::string(width + 2 - name.size(), ' ') + std::string(r.help) + "\n";
+    }
+    return out;
 }
 
 }  // namespace emcv::demo

@@ -1,9 +1,33 @@
 // SPDX-License-Identifier: MIT
-// The frame's pass list, derived from the scene (renderer.hpp): only the passes the scene calls for.
-#include "renderer.hpp"
-#include "view.hpp"
+// The frame's pass list, derived from the scene (pass_list.hpp): only the passes the scene calls for.
+#include "pass_list.hpp"
+
+#include <algorithm>
 
 namespace emcv::demo {
+
+std::string_view pass_base_name(pass_id id) {
+    switch (id) {
+        case pass_id::gbuffer: return "gbuffer";
+        case pass_id::shadow: return "shadow";
+        case pass_id::lighting: return "lighting";
+        case pass_id::sss_tiles: return "sss-tiles";
+        case pass_id::sss_adaptive_samples: return "sss-adaptive-samples";
+        case pass_id::sss_burley: return "sss-burley";
+        case pass_id::sss_adaptive_update: return "sss-adaptive-update";
+        case pass_id::sss_separable_h: return "sss-separable-h";
+        case pass_id::sss_separable_v: return "sss-separable-v";
+        case pass_id::composite: return "composite";
+    }
+    return "unknown";
+}
+
+bool is_sss_pass(pass_id id) { return pass_base_name(id).substr(0, 4) == "sss-"; }
+
+std::string pass_name(const scene& s, const planned_pass& p) {
+    if (p.id == pass_id::shadow) return "shadow:" + s.lights.at(p.light).name;
+    return std::string(pass_base_name(p.id));
+}
 
 bool sss_possibly_visible(const scene& s, int frame, int width, int height) {
     if (!s.has_sss_material()) return false;
@@ -15,35 +39,81 @@ bool sss_possibly_visible(const scene& s, int frame, int width, int height) {
     return false;
 }
 
-bool light_has_shadow_pass(const light& l) {
-    return l.casts_shadow && l.type != light::kind::point;
+bool light_has_shadow_pass(const light& l) { return l.casts_shadow && l.type != light::kind::point; }
+
+bool light_shines(const light& l, int frame) { return l.intensity.at(frame) > 0.0f; }
+
+std::vector<std::size_t> shadow_casters(const scene& s) {
+    std::vector<std::size_t> out;
+    for (std::size_t i = 0; i < s.lights.size(); ++i)
+        if (light_has_shadow_pass(s.lights[i])) out.push_back(i);
+    return out;
 }
 
-bool light_shines(const light& l, int frame) {
-    return l.intensity.at(frame) > 0.0f;
+frame_planner::frame_planner(const scene& s, const method& m, int width, int height)
+    : s_(&s), m_(m), width_(width), height_(height), casters_(shadow_casters(s)) {
+    for (const object& o : s.objects)
+        if (s.materials.at(static_cast<std::size_t>(o.material)).scatters()) sss_bounds_.push_back(object_bounds(s, o));
+    passes_.reserve(casters_.size() + 8);
+    inputs_.assign(6 + 3 * s.lights.size(), 0.0f);
+    held_inputs_ = inputs_;
+}
+
+const std::vector<planned_pass>& frame_planner::plan(int frame, const std::vector<float>& light_scale) {
+    const scene& s = *s_;
+    const view_matrices v = camera_matrices(s.view, frame, width_, height_);
+    const bool visible = m_.scatters() && std::any_of(sss_bounds_.begin(), sss_bounds_.end(), [&](const bounding_sphere& b) {
+                             return sphere_in_frustum(v.view_proj, b);
+                         });
+    // The reference is the converged integral: it is rendered again only when its inputs changed (camera pose,
+    // light radiance; objects do not move in this scene model), else its last result is shown again.
+    reused_ = false;
+    if (m_.type == method::kind::reference && visible) {
+        inputs_[0] = v.position.x; inputs_[1] = v.position.y; inputs_[2] = v.position.z;
+        inputs_[3] = v.target.x; inputs_[4] = v.target.y; inputs_[5] = v.target.z;
+        for (std::size_t i = 0; i < s.lights.size(); ++i) {
+            const float scale = i < light_scale.size() ? light_scale[i] : 1.0f;
+            const glm::vec3 e = s.lights[i].color * s.lights[i].intensity.at(frame) * scale;
+            inputs_[6 + 3 * i] = e.x; inputs_[7 + 3 * i] = e.y; inputs_[8 + 3 * i] = e.z;
+        }
+        reused_ = held_ && inputs_ == held_inputs_;
+        if (!reused_) {
+            held_inputs_ = inputs_;
+            held_ = true;
+        }
+    }
+    scatters_ = visible && !reused_;
+
+    passes_.clear();
+    passes_.push_back({pass_id::gbuffer, 0, 0});
+    for (std::size_t layer = 0; layer < casters_.size(); ++layer)
+        if (light_shines(s.lights[casters_[layer]], frame)) passes_.push_back({pass_id::shadow, casters_[layer], layer});
+    passes_.push_back({pass_id::lighting, 0, 0});
+    if (scatters_) {
+        passes_.push_back({pass_id::sss_tiles, 0, 0});
+        switch (row_of(m_).passes) {
+            case sss_passes::none: break;
+            case sss_passes::burley: passes_.push_back({pass_id::sss_burley, 0, 0}); break;
+            case sss_passes::separable:
+                passes_.push_back({pass_id::sss_separable_h, 0, 0});
+                passes_.push_back({pass_id::sss_separable_v, 0, 0});
+                break;
+            case sss_passes::adaptive:
+                passes_.push_back({pass_id::sss_adaptive_samples, 0, 0});
+                passes_.push_back({pass_id::sss_burley, 0, 0});
+                passes_.push_back({pass_id::sss_adaptive_update, 0, 0});
+                break;
+        }
+    }
+    passes_.push_back({pass_id::composite, 0, 0});
+    return passes_;
 }
 
 std::vector<std::string> pass_list(const scene& s, const method& m, int frame, int width, int height) {
-    std::vector<std::string> passes{"gbuffer"};
-    for (const light& l : s.lights) {
-        if (light_has_shadow_pass(l) && light_shines(l, frame)) passes.push_back("shadow:" + l.name);
-    }
-    passes.emplace_back("lighting");
-    if (m.scatters() && sss_possibly_visible(s, frame, width, height)) {
-        passes.emplace_back("sss-tiles");
-        if (m.type == method::kind::separable) {
-            passes.emplace_back("sss-separable-h");
-            passes.emplace_back("sss-separable-v");
-        } else if (m.type == method::kind::spvg || m.type == method::kind::cv || m.type == method::kind::cv_notex) {
-            passes.emplace_back("sss-adaptive-samples");  // N per pixel from the reprojected history
-            passes.emplace_back("sss-burley");
-            passes.emplace_back("sss-adaptive-update");   // this frame's (f, G) into the history
-        } else {
-            passes.emplace_back("sss-burley");
-        }
-    }
-    passes.emplace_back("composite");
-    return passes;
+    frame_planner planner(s, m, width, height);
+    std::vector<std::string> names;
+    for (const planned_pass& p : planner.plan(frame)) names.push_back(pass_name(s, p));
+    return names;
 }
 
 }  // namespace emcv::demo

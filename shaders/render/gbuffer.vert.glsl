@@ -17,7 +17,7 @@ layout(location = 4) out vec4 v_prev_clip;
 layout(location = 5) flat out uint v_material;
 
 void main() {
-    Object o = objects[in_object];
+    EmcvObject o = objects[in_object];
     vec4 world = o.model * vec4(in_position, 1.0f);
     v_normal = (o.normal_matrix * vec4(in_normal, 0.0f)).xyz;
     v_uv = in_uv;

@@ -15,7 +15,7 @@ const float pi = 3.14159265f;
 
 /// Fraction of light reaching `world` (1 outside the shadow map). light.cone.y: normal offset (world
 /// units, about one shadow texel), light.cone.z: depth bias; a 2x2 hardware PCF tap.
-float shadow_visibility(Light light, vec3 world, vec3 n) {
+float shadow_visibility(EmcvLight light, vec3 world, vec3 n) {
     vec4 clip = light.shadow_view_proj * vec4(world + n * light.cone.y, 1.0f);
     vec3 ndc = clip.xyz / clip.w;
     vec3 uvz = ndc * 0.5f + 0.5f;
@@ -43,7 +43,7 @@ void main() {
         imageStore(out_specular, p, vec4(0.0f));
         return;
     }
-    Material m = materials[code - 1u];
+    EmcvMaterial m = materials[code - 1u];
     vec3 world = emcv_render_world_position(p, emcv_render_depth(p));
     vec3 n = normalize(texelFetch(gbuffer_normal, p, 0).xyz);
     vec3 v = normalize(frame.camera_position.xyz - world);
@@ -51,7 +51,7 @@ void main() {
     vec3 irradiance = frame.ambient.xyz;
     vec3 specular = vec3(0.0f);
     for (uint i = 0u; i < frame.counters.z; ++i) {
-        Light light = lights[i];
+        EmcvLight light = lights[i];
         int kind = int(light.radiance.w);
         vec3 e = light.radiance.xyz;
         if (max(e.x, max(e.y, e.z)) <= 0.0f) continue;  // a dark light: its shadow map was not rendered this frame

@@ -5,14 +5,8 @@
 
 #include "render/frame.h"
 
-struct Object {
-    mat4 model;          // object -> world
-    mat4 normal_matrix;  // inverse transpose of model
-    ivec4 material;      // x: material index
-};
-
 layout(std430, EMCV_LAYOUT_BINDING(EMCV_RENDER_OBJECTS)) readonly buffer Objects {
-    Object objects[];
+    EmcvObject objects[];
 };
 
 // The object index arrives as an instanced attribute (divisor 1, base instance = object index): GL 4.5 has

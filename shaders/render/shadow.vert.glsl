@@ -5,9 +5,8 @@
 #include "render/objects.h"
 
 layout(std140, EMCV_LAYOUT_BINDING(EMCV_RENDER_PASS)) uniform Pass {
-    ivec4 ints;    // x: light index
-    vec4 floats;
-} pass;
+    EmcvPassBlock pass;  // ints.x: light index
+};
 
 layout(location = EMCV_RENDER_ATTRIB_POSITION) in vec3 in_position;
 layout(location = EMCV_RENDER_ATTRIB_OBJECT) in uint in_object;

@@ -14,9 +14,8 @@
 layout(local_size_x = EMCV_RENDER_TILE_SIZE, local_size_y = EMCV_RENDER_TILE_SIZE) in;
 
 layout(std140, EMCV_LAYOUT_BINDING(EMCV_RENDER_PASS)) uniform Pass {
-    ivec4 ints;    // xy: direction (1, 0) or (0, 1)
-    vec4 floats;
-} pass;
+    EmcvPassBlock pass;  // ints.xy: direction (1, 0) or (0, 1)
+};
 
 layout(std430, EMCV_LAYOUT_BINDING(EMCV_RENDER_KERNELS)) readonly buffer Kernels {
     vec4 taps[];   // material * EMCV_RENDER_MAX_SEPARABLE_TAPS + k: rgb weight, w offset in mm; tap 0 is the centre
@@ -31,7 +30,7 @@ void main() {
     uint code = emcv_render_material_code(p);
     if (!emcv_render_scatters(code)) return;
 
-    Material m = materials[code - 1u];
+    EmcvMaterial m = materials[code - 1u];
     int tap_count = int(m.separable.y);
     float half_width_mm = m.separable.x;
     float z = emcv_render_depth(p);

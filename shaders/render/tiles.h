@@ -6,11 +6,8 @@
 #include "render/frame.h"
 
 layout(std430, EMCV_LAYOUT_BINDING(EMCV_RENDER_STATS)) buffer Stats {
-    uint sss_pixels;
-    uint sample_sum;
-    uint sample_max;
-    uint stats_unused;
-} stats;
+    EmcvStatsBlock stats;
+};
 
 layout(std430, EMCV_LAYOUT_BINDING(EMCV_RENDER_TILES)) buffer Tiles {
     uvec4 dispatch;  // xyz: glDispatchComputeIndirect arguments (sss_dispatch.comp.glsl), w: tile count

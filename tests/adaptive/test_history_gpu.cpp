@@ -40,7 +40,7 @@
 
 namespace fs = std::filesystem;
 using emcv::demo::adaptive::history;
-using emcv::demo::adaptive::kind;
+using kind = emcv::demo::method::kind;
 using emcv::demo::adaptive::texel;
 
 namespace {
@@ -219,7 +219,7 @@ TEST_CASE("the GPU history equals the C++ estimators fed the same per-pixel valu
     harness hx;
     for (const kind k : {kind::spvg, kind::cv, kind::cv_notex}) {
         INFO("method " << (k == kind::spvg ? "spvg" : k == kind::cv ? "cv" : "cv-notex"));
-        history h(k, width, height, shader_options(), source_dir / "shaders");
+        history h(emcv::demo::method{k, 0}, width, height, shader_options(), source_dir / "shaders");
         std::vector<texel> previous(pixels);  // fresh: all zero
         std::vector<float> g, f;
         int compared = 0;
@@ -283,7 +283,7 @@ TEST_CASE("disocclusion and off-screen motion restart the history; the rest keep
     emcv::gl::context ctx = emcv::test::context_or_skip();
     emcv::gl::debug_messenger messenger;
     harness hx;
-    history h(kind::cv, width, height, shader_options(), source_dir / "shaders");
+    history h(emcv::demo::method{kind::cv, 0}, width, height, shader_options(), source_dir / "shaders");
     std::vector<float> g, f;
     for (int frame = 0; frame < 4; ++frame) {
         light_at(frame, g, f);
@@ -328,8 +328,8 @@ TEST_CASE("a poisoned history texel (NaN, Inf, negative variance) is reset and n
     for (const kind k : {kind::spvg, kind::cv}) {
         INFO("method " << (k == kind::spvg ? "spvg" : "cv"));
         harness hx;
-        history clean(k, width, height, shader_options(), source_dir / "shaders");
-        history poisoned(k, width, height, shader_options(), source_dir / "shaders");
+        history clean(emcv::demo::method{k, 0}, width, height, shader_options(), source_dir / "shaders");
+        history poisoned(emcv::demo::method{k, 0}, width, height, shader_options(), source_dir / "shaders");
         std::vector<float> g, f;
         for (int frame = 0; frame < 4; ++frame) {
             light_at(frame, g, f);

@@ -37,7 +37,7 @@ std::vector<app::metrics_row> rows_with_change(int change, int frames) {
 
 TEST_CASE("the cv vs spvg line averages the 30 frames from the change and prints ratios and the gap",
           "[app][summary]") {
-    const std::optional<std::string> line = app::cv_vs_spvg_after_change(rows_with_change(20, 60), 20);
+    const std::optional<std::string> line = app::compare_after_change(rows_with_change(20, 60), 20, "cv", "spvg");
     REQUIRE(line);
     INFO(*line);
     // Frames 20..49 only: 10 / 40 spp, 2 / 4 ms, 29 - 30 dB. Frames before 20 or from 50 on would move each.
@@ -50,7 +50,7 @@ TEST_CASE("the cv vs spvg line averages the 30 frames from the change and prints
 }
 
 TEST_CASE("the cv vs spvg line is cut at the last frame rendered", "[app][summary]") {
-    const std::optional<std::string> line = app::cv_vs_spvg_after_change(rows_with_change(5, 12), 5);
+    const std::optional<std::string> line = app::compare_after_change(rows_with_change(5, 12), 5, "cv", "spvg");
     REQUIRE(line);
     INFO(*line);
     CHECK(line->find("frames 5-11") != std::string::npos);
@@ -59,9 +59,9 @@ TEST_CASE("the cv vs spvg line is cut at the last frame rendered", "[app][summar
 
 TEST_CASE("no cv vs spvg line without both methods or without frames after the change", "[app][summary]") {
     std::vector<app::metrics_row> rows = rows_with_change(20, 60);
-    CHECK_FALSE(app::cv_vs_spvg_after_change(rows, 60));  // no frame in the window
+    CHECK_FALSE(app::compare_after_change(rows, 60, "cv", "spvg"));  // no frame in the window
     std::vector<app::metrics_row> without_cv;
     for (const app::metrics_row& r : rows)
         if (r.method != "cv") without_cv.push_back(r);
-    CHECK_FALSE(app::cv_vs_spvg_after_change(without_cv, 20));
+    CHECK_FALSE(app::compare_after_change(without_cv, 20, "cv", "spvg"));
 }

@@ -11,8 +11,10 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "gl/shader_preprocessor.hpp"
+#include "render/method.hpp"
 #include "../support/run_command.hpp"
 
 namespace fs = std::filesystem;
@@ -47,23 +49,37 @@ fs::path write_preprocessed(const fs::path& shader, const std::string& text) {
 
 }  // namespace
 
+/// The defines a shader is built with by the renderer: the adaptive passes once per adaptive method's define
+/// (method table), every other shader once without.
+std::vector<std::string> method_defines(const fs::path& shader) {
+    if (shader.parent_path().filename() != "adaptive") return {""};
+    std::vector<std::string> out;
+    for (const emcv::demo::method_row& r : emcv::demo::method_table())
+        if (!r.adaptive_define.empty()) out.emplace_back(r.adaptive_define);
+    return out;
+}
+
 TEST_CASE("every shader preprocesses and validates with glslangValidator for OpenGL and Vulkan") {
     int shaders = 0;
     for (const auto& entry : fs::recursive_directory_iterator(source_dir / "shaders")) {
         const fs::path p = entry.path();
         if (!entry.is_regular_file() || p.extension() != ".glsl" || p.stem().extension().empty()) continue;
-        ++shaders;
-        INFO("shader " << p.string());
-        const auto src = preprocess_file(p, project_options());
-        const fs::path flat = write_preprocessed(p, src.text);
-        const std::string stage = stage_of(p);
-        const std::string tool = std::string(EMCV_GLSLANG_VALIDATOR) + " -S " + stage + " ";
-        const fs::path spv = flat.string() + ".spv";
-        for (const std::string& mode : {std::string(""), std::string("-G --target-env opengl -o ") + spv.string(),
-                                        std::string("-V --target-env vulkan1.0 -o ") + spv.string()}) {
-            const emcv_test::command_result r = run(tool + mode + " " + flat.string());
-            INFO("glslangValidator " << mode << "\n" << src.rewrite_log(r.output()));
-            CHECK(r.exit_code == 0);
+        for (const std::string& define : method_defines(p)) {
+            ++shaders;
+            INFO("shader " << p.string() << (define.empty() ? "" : " with " + define));
+            preprocess_options options = project_options();
+            if (!define.empty()) options.defines = {{define, "1"}};
+            const auto src = preprocess_file(p, options);
+            const fs::path flat = write_preprocessed(p, src.text);
+            const std::string stage = stage_of(p);
+            const std::string tool = std::string(EMCV_GLSLANG_VALIDATOR) + " -S " + stage + " ";
+            const fs::path spv = flat.string() + ".spv";
+            for (const std::string& mode : {std::string(""), std::string("-G --target-env opengl -o ") + spv.string(),
+                                            std::string("-V --target-env vulkan1.0 -o ") + spv.string()}) {
+                const emcv_test::command_result r = run(tool + mode + " " + flat.string());
+                INFO("glslangValidator " << mode << "\n" << src.rewrite_log(r.output()));
+                CHECK(r.exit_code == 0);
+            }
         }
     }
     CHECK(shaders >= 1);

@@ -8,6 +8,8 @@
 #include <iterator>
 #include <sstream>
 
+#include "render/tunables.hpp"
+
 namespace emcv::eval {
 namespace {
 
@@ -32,12 +34,16 @@ std::vector<std::string> split(const std::string& text) {
 
 std::string usage_text() {
     return "usage: emcv-eval --method M[,M...] [--scene FILE|NAME] [--size WxH] [--frames N] [--sss-scale K]\n"
-           "                 [--seed S] [--heatmaps F[,F...] --heatmap-dir DIR]\n"
+           "                 [--seed S] [--heatmaps F[,F...] --heatmap-dir DIR] [--approximate-cdf]\n"
+           "                 [--define NAME=VALUE ...]\n"
            "Renders the methods side by side, frame by frame (no reference), and prints one CSV row per frame\n"
            "and method: scene,width,height,sss_scale,method,frame,sss_ms,frame_ms,mean_spp,max_spp,sss_pixels,lights\n"
            "(lights: name=intensity;... of the scene's light curves at the frame).\n"
            "--sss-scale multiplies every scattering material's mean free path (the radius on screen).\n"
-           "--heatmaps writes <method>.f<F>.samples.csv (and .alpha.csv for cv) under DIR, top row first.\n";
+           "--heatmaps writes <method>.f<F>.samples.csv (and .alpha.csv for cv) under DIR, top row first.\n"
+           "--define sets a tunable of the port headers for every shader (as emcv-demo --define).\n"
+           "Methods (--method takes these names; emcv-demo --list-methods prints them for scripts):\n" +
+           demo::method_help_lines(2);
 }
 
 options parse_options(const std::vector<std::string>& args) {
@@ -48,9 +54,13 @@ options parse_options(const std::vector<std::string>& args) {
             o.help = true;
             continue;
         }
+        if (flag == "--approximate-cdf") {
+            o.approximate_cdf = true;
+            continue;
+        }
         if (flag.rfind("--", 0) != 0) throw usage_error("unexpected argument '" + flag + "'");
         static const char* const known[] = {"--scene", "--method", "--size", "--frames", "--seed", "--sss-scale",
-                                            "--heatmaps", "--heatmap-dir"};
+                                            "--heatmaps", "--define", "--heatmap-dir"};
         if (std::find(std::begin(known), std::end(known), flag) == std::end(known))
             throw usage_error("unknown option '" + flag + "'");
         if (i + 1 >= args.size()) throw usage_error(flag + ": missing value");
@@ -78,6 +88,12 @@ options parse_options(const std::vector<std::string>& args) {
             if (value.empty() || *end != '\0' || !std::isfinite(k) || k <= 0.0f || k > 1000.0f)
                 throw usage_error("--sss-scale: expected a number in (0, 1000], got '" + value + "'");
             o.sss_scale = k;
+        } else if (flag == "--define") {
+            try {
+                demo::add_define(o.defines, value);
+            } catch (const demo::tunable_error& e) {
+                throw usage_error(e.what());
+            }
         } else if (flag == "--heatmaps") {
             for (const std::string& f : split(value)) o.heatmap_frames.push_back(static_cast<int>(parse_integer(flag, f, 0, 100000)));
         } else {  // --heatmap-dir, the last of `known`

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "render/renderer.hpp"
@@ -25,6 +26,9 @@ struct options {
     unsigned seed = 1;                ///< --seed S
     std::vector<int> heatmap_frames;  ///< --heatmaps F[,F...]: frames whose sample counts (and cv alpha) to dump
     std::filesystem::path heatmap_dir;  ///< --heatmap-dir DIR (required with --heatmaps)
+    bool approximate_cdf = false;     ///< --approximate-cdf: SPVG's inverse-CDF fit for the Burley radii
+    /// --define NAME=VALUE (repeatable): port tunables, validated (render/tunables.hpp), later ones win.
+    std::vector<std::pair<std::string, std::string>> defines;
     bool help = false;
 };
 

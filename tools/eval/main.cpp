@@ -15,6 +15,7 @@
 #include "gl/context.hpp"
 #include "gl/debug.hpp"
 #include "render/renderer.hpp"
+#include "render_flags.hpp"
 #include "scene/load.hpp"
 
 namespace fs = std::filesystem;
@@ -49,11 +50,7 @@ int run(const eval::options& o) {
 
     gl::context context;
     gl::debug_messenger messenger;
-    demo::render_options ro;
-    ro.width = o.width;
-    ro.height = o.height;
-    ro.seed = o.seed;
-    ro.timing_mode = demo::timing::per_frame;
+    const demo::render_options ro = demo::app::make_render_options(o, demo::timing::per_frame);
     std::vector<demo::renderer> renderers;
     for (const demo::method& m : o.methods) renderers.emplace_back(s, m, ro);
 
@@ -72,7 +69,7 @@ int run(const eval::options& o) {
             if (dump) {
                 const std::string stem = name + ".f" + std::to_string(frame);
                 write_csv(o.heatmap_dir / (stem + ".samples.csv"), renderers[i].sample_counts());
-                if (o.methods[i].type == demo::method::kind::cv)
+                if (demo::row_of(o.methods[i]).alpha_heatmap)
                     write_csv(o.heatmap_dir / (stem + ".alpha.csv"), renderers[i].cv_alpha());
                 write_csv(o.heatmap_dir / (stem + ".mask.csv"), renderers[i].sss_mask());
             }

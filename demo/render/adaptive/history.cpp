@@ -14,6 +14,8 @@
 #include "gl/debug.hpp"
 #include "render/targets.hpp"
 
+#include <string>
+
 // Image units: every binding below the guaranteed minimum (NVIDIA has exactly 8), and the adaptive images apart
 // from the burley pass's own (render/bindings.h), which stay bound across the adaptive samples pass.
 static_assert(EMCV_ADAPTIVE_IMG_SAMPLES < EMCV_MAX_IMAGE_UNITS && EMCV_ADAPTIVE_IMG_HISTORY_A < EMCV_MAX_IMAGE_UNITS &&
@@ -27,33 +29,37 @@ namespace emcv::demo::adaptive {
 
 namespace {
 
-/// History formats (include/emcv/port/history.h): spvg and cv-notex one RGBA16F; cv RGBA32F + RG32F.
-GLenum format_a(kind k) { return k == kind::cv ? GL_RGBA32F : GL_RGBA16F; }
+/// History formats (include/emcv/port/history.h): moving stats one RGBA16F; the EMCM RGBA32F + RG32F.
+GLenum format_a(history_layout l) { return l == history_layout::emcm2 ? GL_RGBA32F : GL_RGBA16F; }
 constexpr GLenum format_b = GL_RG32F;
 
-const char* suffix(kind k) {
-    switch (k) {
-        case kind::spvg: return "spvg";
-        case kind::cv: return "cv";
-        case kind::cv_notex: return "notex";
-    }
-    return "spvg";
+/// The shader options of the method's adaptive passes: the renderer's, plus the method's define.
+gl::preprocess_options with_method_define(gl::preprocess_options shaders, const method_row& row) {
+    shaders.defines.emplace_back(std::string(row.adaptive_define), "1");
+    return shaders;
 }
 
+history_layout checked_layout(const method& m) {
+    const history_layout l = row_of(m).history;
+    if (l == history_layout::none || row_of(m).adaptive_define.empty())
+        throw std::invalid_argument("adaptive history: method " + m.name() + " keeps no history");
+    return l;
+}
 
 }  // namespace
 
-history::history(kind k, int width, int height, const gl::preprocess_options& shaders,
+history::history(const method& m, int width, int height, const gl::preprocess_options& shaders,
                  const std::filesystem::path& shader_dir)
-    : kind_(k), width_(width), height_(height) {
+    : layout_(checked_layout(m)), width_(width), height_(height) {
     if (width < 1 || height < 1) throw std::runtime_error("adaptive history: empty size");
     const std::filesystem::path dir = shader_dir / "adaptive";
-    samples_program_ = gl::program::compute(dir / (std::string("samples_") + suffix(k) + ".comp.glsl"), shaders);
-    update_program_ = gl::program::compute(dir / (std::string("update_") + suffix(k) + ".comp.glsl"), shaders);
+    const gl::preprocess_options options = with_method_define(shaders, row_of(m));
+    samples_program_ = gl::program::compute(dir / "samples.comp.glsl", options);
+    update_program_ = gl::program::compute(dir / "update.comp.glsl", options);
     for (int i = 0; i < 2; ++i) {
-        a_[static_cast<std::size_t>(i)] = make_cleared_target(format_a(k), width, height);
-        // The second texture exists only where the layout has one (cv); the others allocate nothing more.
-        if (k == kind::cv) b_[static_cast<std::size_t>(i)] = make_cleared_target(format_b, width, height);
+        a_[static_cast<std::size_t>(i)] = make_cleared_target(format_a(layout_), width, height);
+        // The second texture exists only where the layout has one (the EMCM); the others allocate nothing more.
+        if (layout_ == history_layout::emcm2) b_[static_cast<std::size_t>(i)] = make_cleared_target(format_b, width, height);
     }
     samples_ = make_cleared_target(GL_R32UI, width, height);
     prev_depth_ = make_cleared_target(GL_R32F, width, height);
@@ -65,12 +71,12 @@ void history::record_samples() {
     const std::size_t cur = static_cast<std::size_t>(current_), prev = 1 - cur;
     samples_program_.use();
     glBindTextureUnit(EMCV_ADAPTIVE_TEX_HISTORY_PREV_A, a_[prev].id());
-    glBindTextureUnit(EMCV_ADAPTIVE_TEX_HISTORY_PREV_B, kind_ == kind::cv ? b_[prev].id() : a_[prev].id());
+    glBindTextureUnit(EMCV_ADAPTIVE_TEX_HISTORY_PREV_B, layout_ == history_layout::emcm2 ? b_[prev].id() : a_[prev].id());
     glBindTextureUnit(EMCV_ADAPTIVE_TEX_PREV_DEPTH, prev_depth_.id());
     glBindTextureUnit(EMCV_ADAPTIVE_TEX_PREV_NORMAL, prev_normal_.id());
     glBindTextureUnit(EMCV_ADAPTIVE_TEX_PREV_MATERIAL, prev_material_.id());
-    glBindImageTexture(EMCV_ADAPTIVE_IMG_HISTORY_A, a_[cur].id(), 0, GL_FALSE, 0, GL_READ_WRITE, format_a(kind_));
-    if (kind_ == kind::cv)
+    glBindImageTexture(EMCV_ADAPTIVE_IMG_HISTORY_A, a_[cur].id(), 0, GL_FALSE, 0, GL_READ_WRITE, format_a(layout_));
+    if (layout_ == history_layout::emcm2)
         glBindImageTexture(EMCV_ADAPTIVE_IMG_HISTORY_B, b_[cur].id(), 0, GL_FALSE, 0, GL_READ_WRITE, format_b);
     glBindImageTexture(EMCV_ADAPTIVE_IMG_SAMPLES, samples_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     glDispatchComputeIndirect(0);
@@ -81,8 +87,8 @@ void history::record_update(GLuint scattered) {
     const std::size_t cur = static_cast<std::size_t>(current_);
     update_program_.use();
     glBindTextureUnit(EMCV_RENDER_TEX_SSS_IN, scattered);
-    glBindImageTexture(EMCV_ADAPTIVE_IMG_HISTORY_A, a_[cur].id(), 0, GL_FALSE, 0, GL_READ_WRITE, format_a(kind_));
-    if (kind_ == kind::cv)
+    glBindImageTexture(EMCV_ADAPTIVE_IMG_HISTORY_A, a_[cur].id(), 0, GL_FALSE, 0, GL_READ_WRITE, format_a(layout_));
+    if (layout_ == history_layout::emcm2)
         glBindImageTexture(EMCV_ADAPTIVE_IMG_HISTORY_B, b_[cur].id(), 0, GL_FALSE, 0, GL_READ_WRITE, format_b);
     glBindImageTexture(EMCV_ADAPTIVE_IMG_SAMPLES, samples_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     glDispatchComputeIndirect(0);
@@ -115,7 +121,7 @@ std::vector<texel> history::read() const {
     std::vector<glm::vec4> a(count);
     glGetTextureImage(a_[cur].id(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(count * sizeof(glm::vec4)), a.data());
     std::vector<glm::vec4> b(count, glm::vec4(0.0f));
-    if (kind_ == kind::cv)
+    if (layout_ == history_layout::emcm2)
         glGetTextureImage(b_[cur].id(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(count * sizeof(glm::vec4)),
                           b.data());
     std::vector<texel> out(count);
@@ -133,7 +139,7 @@ void history::write_previous(const std::vector<texel>& texels) {
         b[i] = glm::vec4(texels[i].b, 0.0f, 0.0f);
     }
     glTextureSubImage2D(a_[prev].id(), 0, 0, 0, width_, height_, GL_RGBA, GL_FLOAT, a.data());
-    if (kind_ == kind::cv) glTextureSubImage2D(b_[prev].id(), 0, 0, 0, width_, height_, GL_RGBA, GL_FLOAT, b.data());
+    if (layout_ == history_layout::emcm2) glTextureSubImage2D(b_[prev].id(), 0, 0, 0, width_, height_, GL_RGBA, GL_FLOAT, b.data());
 }
 
 gl::float_image history::alpha() const {
@@ -142,7 +148,7 @@ gl::float_image history::alpha() const {
     img.height = height_;
     img.channels = 1;
     img.pixels.assign(std::size_t(width_) * std::size_t(height_), 0.0f);
-    if (kind_ != kind::cv) return img;
+    if (layout_ != history_layout::emcm2) return img;
     const std::vector<texel> t = read();
     for (std::size_t i = 0; i < t.size(); ++i) img.pixels[i] = emcv::port::emcv_cv_coefficient(t[i].a.y, t[i].a.z);
     return img;

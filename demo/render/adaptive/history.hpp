@@ -18,13 +18,12 @@
 #include "gl/handles.hpp"
 #include "gl/image_io.hpp"
 #include "gl/program.hpp"
+#include "render/method.hpp"
 
 namespace emcv::demo::adaptive {
 
-enum class kind { spvg, cv, cv_notex };
-
 /// One pixel's stored history as read back: a = the first texture (spvg/cv-notex: (mean, var / target,
-/// count, 0); cv: (C_ff, C_fG, C_GG, count)), b = the second (cv: (mean_f, mean_G)), zero otherwise.
+/// count, 0); cv: (C_ff, C_fG, C_GG, count)), b = the second (emcm2: (mean_f, mean_G)), zero otherwise.
 struct texel {
     glm::vec4 a{0.0f};
     glm::vec2 b{0.0f};
@@ -32,11 +31,14 @@ struct texel {
 
 class history {
 public:
-    /// Allocates the textures (cleared: every pixel starts fresh) and builds the method's two programs from
-    /// shader_dir/adaptive. Throws gl::shader_error or std::runtime_error naming the problem.
-    history(kind k, int width, int height, const gl::preprocess_options& shaders, const std::filesystem::path& shader_dir);
+    /// Allocates the textures of the method's history layout (cleared: every pixel starts fresh) and builds
+    /// the two adaptive passes from shader_dir/adaptive with the method's define (method table). Throws
+    /// gl::shader_error or std::runtime_error naming the problem, std::invalid_argument for a method that
+    /// keeps no history.
+    history(const method& m, int width, int height, const gl::preprocess_options& shaders,
+            const std::filesystem::path& shader_dir);
 
-    kind method() const noexcept { return kind_; }
+    history_layout layout() const noexcept { return layout_; }
 
     /// The adaptive-samples pass. Expects what the renderer's SSS passes expect bound (frame UBO, materials,
     /// tile list as the GL_DISPATCH_INDIRECT_BUFFER, G-buffer and motion textures at their render slots).
@@ -61,7 +63,7 @@ public:
     gl::float_image alpha() const;
 
 private:
-    kind kind_;
+    history_layout layout_;
     int width_, height_;
     gl::program samples_program_, update_program_;
     std::array<gl::texture_2d, 2> a_, b_;  // ping-pong: [current_] is this frame's

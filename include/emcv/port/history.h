@@ -29,12 +29,38 @@
 
 EMCV_PORT_BEGIN
 
-#define EMCV_HISTORY_TARGET 1.0e-4f  // SPVG's target variance of the gamma-space luminance
+// Tunables: each may be set before this header is included (`#define NAME value`, or the renderer's
+// `--define NAME=VALUE`, which demo/render/tunables.cpp validates against the ranges given here).
+
+/// SPVG's target variance of the gamma-space luminance. Range: (0, 1].
+#ifndef EMCV_HISTORY_TARGET
+#define EMCV_HISTORY_TARGET 1.0e-4f
+#endif
+/// The most samples a pixel takes in a frame. Range: [1, 1024] integer, >= every N_MIN.
+#ifndef EMCV_HISTORY_N_MAX
 #define EMCV_HISTORY_N_MAX 64
+#endif
+/// spvg's fewest samples per SSS pixel. Range: [0, N_MAX] integer.
+#ifndef EMCV_HISTORY_SPVG_N_MIN
 #define EMCV_HISTORY_SPVG_N_MIN 8
-#define EMCV_HISTORY_ETA_MOVING 0.2f  // SPVG's moving mean/variance weight (spvg, cv-notex)
-#define EMCV_HISTORY_ETA_EMCM 0.05f   // the EMCM weight of cv (paper; chosen by the study, docs/renderer.md)
-#define EMCV_HISTORY_MAX_COUNT 1024u  // saturating frame count, exact in binary16
+#endif
+/// The control-variate methods' fewest samples where the kernel is wider than a pixel (cv, cv-notex).
+/// Range: [0, N_MAX] integer.
+#ifndef EMCV_HISTORY_RESIDUAL_N_MIN
+#define EMCV_HISTORY_RESIDUAL_N_MIN EMCV_HISTORY_SPVG_N_MIN
+#endif
+/// SPVG's moving mean/variance weight (spvg, cv-notex). Range: (0, 1].
+#ifndef EMCV_HISTORY_ETA_MOVING
+#define EMCV_HISTORY_ETA_MOVING 0.2f
+#endif
+/// The EMCM weight of cv (the paper's; chosen by the study, docs/renderer.md). Range: (0, 1].
+#ifndef EMCV_HISTORY_ETA_EMCM
+#define EMCV_HISTORY_ETA_EMCM 0.05f
+#endif
+/// Saturating frame count of a history texel, an integer exact in binary16. Range: [2, 2048] unsigned.
+#ifndef EMCV_HISTORY_MAX_COUNT
+#define EMCV_HISTORY_MAX_COUNT 1024u
+#endif
 
 /// Gamma-space luminance (Rec. 709 weights, gamma 1/2.2) of a linear colour: the scalar SPVG tracks.
 /// `precise` and written out (not dot()): every shader that tracks this value must get the same bits, and a
@@ -98,8 +124,10 @@ EMCV_FN bool emcv_history_reusable(uint material, uint prev_material, float expe
 }
 
 /// r with F(r) = 0.997 for a Burley profile of shape distance d is 16.6 d (the radius demo/scene/footprint.hpp
-/// reports: `far` keeps it under a pixel).
+/// reports: `far` keeps it under a pixel). Range: (0, 100].
+#ifndef EMCV_HISTORY_FOOTPRINT_RADIUS_PER_D
 #define EMCV_HISTORY_FOOTPRINT_RADIUS_PER_D 16.6f
+#endif
 
 /// A sub-pixel kernel: 99.7% of the widest channel's profile within one pixel of the centre. Its scattered value
 /// is the pixel's own diffuse up to the profile's tail, so the control-variate methods take 0 samples there
@@ -123,7 +151,7 @@ EMCV_FN int emcv_history_count_spvg(EMCV_IN(EmcvMovingStats) s) {
 /// repeats bit for bit from one frame to the next, and a variance of exactly 0 read as "no samples" showed
 /// plain diffuse on 70% of static's SSS pixels at frame 2 (docs/renderer.md).
 EMCV_FN int emcv_history_count_residual(float residual_variance) {
-    return emcv_sample_count(residual_variance, EMCV_HISTORY_TARGET, EMCV_HISTORY_SPVG_N_MIN, EMCV_HISTORY_N_MAX);
+    return emcv_sample_count(residual_variance, EMCV_HISTORY_TARGET, EMCV_HISTORY_RESIDUAL_N_MIN, EMCV_HISTORY_N_MAX);
 }
 
 /// cv-notex: the moving variance of r = f - G (alpha = 1).
@@ -133,7 +161,10 @@ EMCV_FN int emcv_history_count_notex(EMCV_IN(EmcvMovingStats) s) {
 }
 
 /// cv's floor while its history is settling after a light change (docs/renderer.md, "Settling after a change").
+/// Range: [0, N_MAX] integer; 0 (or anything up to RESIDUAL_N_MIN) turns the settling floor off.
+#ifndef EMCV_HISTORY_CV_SETTLE_N
 #define EMCV_HISTORY_CV_SETTLE_N 11
+#endif
 
 /// cv: Var(f - alpha G) = C_ff - C_fG^2 / C_GG from the EMCM (the joint optimum of N and alpha), with the
 /// settling floor while the light change still explains more of f's variance than the residual does

@@ -1,11 +1,15 @@
 // SPDX-License-Identifier: MIT
-// shaders/adaptive/samples.h — the adaptive-samples pass (body; the entry files pick the method): over the SSS
+// shaders/adaptive/samples.comp.glsl — the adaptive-samples pass of every adaptive method (the renderer defines the
+// method's EMCV_ADAPTIVE_* from its row of the method table): over the SSS
 // tiles, each SSS pixel fetches last frame's history at its reprojected position (motion vectors, point
 // sampling), keeps it only when the position is on screen and the surface is the same (material, depth,
 // normal: emcv_history_reusable) and the texel is not poisoned, writes that state (or a fresh one) into this
 // frame's history, and writes the N the burley pass takes (EMCV_ADAPTIVE_IMG_SAMPLES).
-#ifndef EMCV_ADAPTIVE_SAMPLES_H
-#define EMCV_ADAPTIVE_SAMPLES_H
+#version 450 core
+
+#if !defined(EMCV_ADAPTIVE_SPVG) && !defined(EMCV_ADAPTIVE_CV) && !defined(EMCV_ADAPTIVE_NOTEX)
+#error "the renderer defines the method: EMCV_ADAPTIVE_SPVG, EMCV_ADAPTIVE_CV or EMCV_ADAPTIVE_NOTEX (method table, adaptive_define)"
+#endif
 
 #include "emcv/port/sss.h"
 #include "adaptive/history_io.h"
@@ -71,5 +75,3 @@ void main() {
 #endif
     imageStore(samples_image, p, uvec4(uint(n)));
 }
-
-#endif  // #ifndef EMCV_ADAPTIVE_SAMPLES_H

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// shaders/adaptive/update.h — the adaptive-update pass (body; the entry files pick the method): after the
+// shaders/adaptive/update.comp.glsl — the adaptive-update pass of every adaptive method (the renderer defines the
+// method's EMCV_ADAPTIVE_* from its row of the method table): after the
 // burley pass, each SSS pixel pushes this frame's values into its history with the port's estimators
 // (include/emcv/port/ema.h, cv.h): f = the scattered diffuse (the burley output, G itself when N was 0),
 // G = the unscattered diffuse (in-frame constant control), both as displayed gamma-space luminance.
@@ -7,8 +8,11 @@
 //   cv        EMCM over (f, G) (eta 0.05)
 //   cv-notex  moving mean/variance of r = f - G (alpha = 1, eta 0.2)
 // A non-finite f or G is refused by the port (state unchanged); a poisoned stored state is reset, never used.
-#ifndef EMCV_ADAPTIVE_UPDATE_H
-#define EMCV_ADAPTIVE_UPDATE_H
+#version 450 core
+
+#if !defined(EMCV_ADAPTIVE_SPVG) && !defined(EMCV_ADAPTIVE_CV) && !defined(EMCV_ADAPTIVE_NOTEX)
+#error "the renderer defines the method: EMCV_ADAPTIVE_SPVG, EMCV_ADAPTIVE_CV or EMCV_ADAPTIVE_NOTEX (method table, adaptive_define)"
+#endif
 
 #include "adaptive/history_io.h"
 #include "render/tiles.h"
@@ -38,5 +42,3 @@ void main() {
 #endif
     emcv_adaptive_store(p, s);
 }
-
-#endif  // #ifndef EMCV_ADAPTIVE_UPDATE_H

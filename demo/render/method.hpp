@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: MIT
+// emcv::demo methods: the scattering methods as the command line names them, and the method table, one row
+// per method, from which every other part derives what a method does (docs/architecture.md, "Adding a method").
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace emcv::demo {
+
+/// A scattering method, as named on the command line (`--method`).
+struct method {
+    enum class kind { diffuse, burley, separable, reference, spvg, cv, cv_notex };
+    kind type = kind::diffuse;
+    /// burley: samples per SSS pixel (1..1024); separable: taps (11, 17 or 25); reference: samples per pixel
+    /// (>= 1024 unless a test asks for fewer, see make_reference); 0 for the others.
+    int samples = 0;
+
+    /// "diffuse", "burley-16", "separable-17", "reference", "spvg", "cv", "cv-notex".
+    std::string name() const;
+    bool scatters() const { return type != kind::diffuse; }
+    bool operator==(const method& o) const { return type == o.type && samples == o.samples; }
+    bool operator!=(const method& o) const { return !(*this == o); }
+};
+
+/// The SSS passes a method records between `sss-tiles` and `composite` (pass_list.hpp spells them out).
+enum class sss_passes {
+    none,       ///< no SSS pass: the composite shows the unscattered diffuse
+    burley,     ///< sss-burley with a fixed count per pixel
+    separable,  ///< sss-separable-h, sss-separable-v
+    adaptive,   ///< sss-adaptive-samples, sss-burley with N per pixel, sss-adaptive-update
+};
+
+/// What an adaptive method keeps per pixel between frames (include/emcv/port/history.h has the layouts).
+enum class history_layout {
+    none,          ///< no history
+    moving_stats,  ///< one RGBA16F texel: moving mean and variance of one scalar (spvg, cv-notex)
+    emcm2,         ///< RGBA32F (C_ff, C_fG, C_GG, count) + RG32F (mean_f, mean_G): the EMCM over (f, G) (cv)
+};
+
+/// The parameter a method's name carries after a dash ("burley-16", "separable-11").
+struct method_parameter {
+    std::string_view meaning;  ///< "samples per SSS pixel", "taps"; empty: the method takes none
+    int minimum = 0;
+    int maximum = 0;
+    std::vector<int> allowed;  ///< when not empty, only these values
+    int default_value = 0;     ///< the value of the bare name ("separable"); 0: the bare name needs the dash form
+    bool on_command_line = true;  ///< false: only the bare name parses (reference; tests set other counts in code)
+};
+
+/// One row of the method table.
+struct method_row {
+    method::kind type;
+    std::string_view name;  ///< the name, or the prefix before "-<parameter>"
+    std::string_view help;  ///< one line for --help and --list-methods
+    method_parameter parameter;
+    int in_all = -1;  ///< the parameter `--method all` renders it with; -1: not part of `all`
+    sss_passes passes = sss_passes::none;
+    history_layout history = history_layout::none;
+    /// The shader define that selects the method's formulas in the adaptive passes (shaders/adaptive/*.comp.glsl).
+    std::string_view adaptive_define;
+    bool samples_heatmap = false;  ///< --out also writes samples-NNNN.png (N per pixel)
+    bool alpha_heatmap = false;    ///< --out also writes alpha-NNNN.png (the control-variate coefficient)
+};
+
+/// Every method, in the order of `--method all` and of the summary.
+const std::vector<method_row>& method_table();
+/// The row of a method.
+const method_row& row_of(method::kind type);
+inline const method_row& row_of(const method& m) { return row_of(m.type); }
+
+/// True for the methods that choose N per pixel from a history (spvg, cv, cv-notex).
+inline bool is_adaptive(const method& m) { return row_of(m).passes == sss_passes::adaptive; }
+
+/// Default sample counts.
+inline constexpr int default_separable_taps = 17;
+inline constexpr int default_reference_samples = 1024;
+
+/// A method from its command-line name ("burley-16", "separable", "cv", ...) through the table; nullopt for
+/// anything else.
+std::optional<method> parse_method(std::string_view text);
+
+/// Every method of the table that `--method all` renders, with its parameter there.
+std::vector<method> all_methods();
+
+/// The reference with an explicit sample count (tests: convergence against a 4x-sample render).
+method make_reference(int samples);
+
+/// "diffuse, burley-N (N = 1..1024), ...": the accepted names, for error messages.
+std::string accepted_method_names();
+
+/// One line per row: "  name  help", the text of --help's method list and of --list-methods.
+std::string method_help_lines(std::size_t indent);
+
+}  // namespace emcv::demo

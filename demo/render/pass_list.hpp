@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: MIT
+// emcv::demo pass list: the passes a frame records, derived from the scene and the method (docs/frame.md).
+// The renderer walks exactly the list frame_planner::plan returns, and `--print-passes` prints the same list:
+// what is printed and what runs come from this one place.
+//   gbuffer          linear view depth R32F, normal, albedo, material id, motion (previous frame's camera)
+//   shadow:<light>   one per light with casts_shadow that shines this frame (point lights never cast here)
+//   lighting         diffuse irradiance without albedo (RGBA16F) kept apart from specular GGX (RGBA16F)
+//   sss-tiles        8x8 tiles holding an SSS pixel, appended on the GPU + indirect dispatch arguments
+//   the method's SSS passes (method.hpp, sss_passes), over the SSS tiles only (indirect dispatch)
+//   composite        post-scatter albedo * scattered (or unscattered) diffuse + specular, tonemap, sRGB
+// "sss-tiles" and the SSS passes are not recorded for a method that does not scatter, for a scene with no SSS
+// material, when every SSS object lies outside the view frustum, or when the reference's inputs are those of
+// the result it already holds (it is shown again).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "method.hpp"
+#include "scene/scene.hpp"
+#include "view.hpp"
+
+namespace emcv::demo {
+
+enum class pass_id {
+    gbuffer,
+    shadow,
+    lighting,
+    sss_tiles,
+    sss_adaptive_samples,  ///< N per pixel from the reprojected history
+    sss_burley,
+    sss_adaptive_update,   ///< this frame's (f, G) into the history
+    sss_separable_h,
+    sss_separable_v,
+    composite,
+};
+inline constexpr std::size_t pass_id_count = 10;
+
+/// "gbuffer", "shadow", "lighting", "sss-tiles", "sss-adaptive-samples", "sss-burley", ...
+std::string_view pass_base_name(pass_id id);
+/// The passes counted in frame_stats::sss_ms.
+bool is_sss_pass(pass_id id);
+
+struct planned_pass {
+    pass_id id = pass_id::gbuffer;
+    std::size_t light = 0;  ///< shadow: the light's index in the scene
+    std::size_t layer = 0;  ///< shadow: its layer in the shadow-map array
+    bool operator==(const planned_pass& o) const { return id == o.id && light == o.light && layer == o.layer; }
+};
+
+/// "shadow:<light name>" for a shadow pass, the base name otherwise.
+std::string pass_name(const scene& s, const planned_pass& p);
+
+/// True when some object with a scattering material intersects the view frustum at this frame (bounding
+/// sphere of its transformed mesh against the six planes).
+bool sss_possibly_visible(const scene& s, int frame, int width, int height);
+
+/// The lights with a shadow-map layer, in layer order.
+std::vector<std::size_t> shadow_casters(const scene& s);
+
+/// Plans each frame's passes in order. Frames are planned in increasing order: the reference's reuse compares
+/// this frame's SSS inputs (camera pose, light radiance) with those of the result it holds. plan() allocates
+/// nothing after the first call.
+class frame_planner {
+public:
+    frame_planner(const scene& s, const method& m, int width, int height);
+
+    /// The passes of `frame`; `light_scale` multiplies each light's intensity (the window's toggles), empty
+    /// for 1 everywhere.
+    const std::vector<planned_pass>& plan(int frame, const std::vector<float>& light_scale = {});
+    /// Whether the last planned frame shows the reference's held result again.
+    bool reuses_result() const { return reused_; }
+    /// Whether the last planned frame records SSS passes.
+    bool scatters() const { return scatters_; }
+    /// Forget the held result (method switch).
+    void reset() { held_ = false; }
+
+private:
+    const scene* s_;
+    method m_;
+    int width_, height_;
+    std::vector<bounding_sphere> sss_bounds_;
+    std::vector<std::size_t> casters_;
+    std::vector<planned_pass> passes_;
+    std::vector<float> inputs_, held_inputs_;
+    bool held_ = false, reused_ = false, scatters_ = false;
+};
+
+/// The names of frame_planner's list for one frame, planned from scratch (no held reference result): what
+/// `--print-passes` prints for frame 0 and the tests compare with.
+std::vector<std::string> pass_list(const scene& s, const method& m, int frame, int width, int height);
+
+}  // namespace emcv::demo

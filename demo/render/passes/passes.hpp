@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: MIT
+// The frame's passes, one module each (pass_list.hpp names them, in order). Each records itself from the frame
+// context: binds what it reads and writes, dispatches, and leaves the barrier its readers need.
+#pragma once
+
+#include "render/pass_list.hpp"
+#include "render/resources.hpp"
+
+namespace emcv::demo::passes {
+
+void gbuffer(const frame_context& c);
+void shadow(const frame_context& c, const planned_pass& p);
+void lighting(const frame_context& c);
+void sss_tiles(const frame_context& c);
+void sss_adaptive_samples(const frame_context& c);
+void sss_burley(const frame_context& c);
+void sss_adaptive_update(const frame_context& c);
+/// direction 0: horizontal, from the lighting; 1: vertical, from the horizontal pass's result.
+void sss_separable(const frame_context& c, int direction);
+void composite(const frame_context& c);
+
+/// Records the planned pass `p` (the renderer's loop over frame_planner::plan).
+void record(const planned_pass& p, const frame_context& c);
+
+/// Binds the frame's targets that the compute passes read through samplers (G-buffer, shadow maps, lighting).
+void bind_frame_textures(const frame_context& c);
+/// Makes image stores visible to later texture fetches and image loads.
+void image_barrier_for_reads();
+
+}  // namespace emcv::demo::passes

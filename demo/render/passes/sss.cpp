@@ -1,0 +1,87 @@
+// SPDX-License-Identifier: MIT
+// The SSS passes: sss-tiles (the tile list and its indirect dispatch), sss-burley, sss-separable-h/-v, and the
+// adaptive methods' sss-adaptive-samples / sss-adaptive-update around sss-burley (demo/render/adaptive).
+#include "passes.hpp"
+
+#include "emcv/port/bindings.h"
+#include "render/adaptive/history.hpp"
+#include "render/bindings.h"
+
+// Image units (render/bindings.h): below the guaranteed minimum, and distinct within each pass.
+static_assert(EMCV_RENDER_IMG_DIFFUSE < EMCV_MAX_IMAGE_UNITS && EMCV_RENDER_IMG_SPECULAR < EMCV_MAX_IMAGE_UNITS &&
+              EMCV_RENDER_IMG_SSS_OUT < EMCV_MAX_IMAGE_UNITS && EMCV_RENDER_IMG_COUNT < EMCV_MAX_IMAGE_UNITS &&
+              EMCV_RENDER_IMG_LINEAR < EMCV_MAX_IMAGE_UNITS && EMCV_RENDER_IMG_DISPLAY < EMCV_MAX_IMAGE_UNITS);
+static_assert(EMCV_RENDER_IMG_DIFFUSE != EMCV_RENDER_IMG_SPECULAR && EMCV_RENDER_IMG_SSS_OUT != EMCV_RENDER_IMG_COUNT &&
+              EMCV_RENDER_IMG_LINEAR != EMCV_RENDER_IMG_DISPLAY);
+
+namespace emcv::demo::passes {
+
+namespace {
+
+/// The SSS passes run over the tile list that sss-tiles wrote (indirect dispatch arguments at its start).
+void bind_tile_dispatch(const frame_context& c) { glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, c.res.tiles_ssbo.id()); }
+
+adaptive::history& history_of(const frame_context& c) {
+    // frame_planner plans the adaptive passes only for methods whose row says so, and the renderer makes the
+    // history for exactly those.
+    return *c.history;
+}
+
+}  // namespace
+
+void sss_tiles(const frame_context& c) {
+    const gpu_resources& r = c.res;
+    bind_frame_textures(c);
+    const GLuint header[4] = {0u, 0u, 1u, 0u};  // no tiles yet: the dispatch pass writes x, y from w
+    glNamedBufferSubData(r.tiles_ssbo.id(), 0, sizeof header, header);
+    glClearNamedBufferData(r.stats_ssbo.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+    // The sample-count image is read back per pixel (heatmaps): pixels outside the SSS tiles must read 0.
+    glClearTexImage(r.counts.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+    c.programs.tiles.use();
+    glDispatchCompute(c.groups_x, c.groups_y, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    c.programs.dispatch.use();
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void sss_adaptive_samples(const frame_context& c) {
+    bind_frame_textures(c);
+    bind_tile_dispatch(c);
+    history_of(c).record_samples();
+}
+
+void sss_burley(const frame_context& c) {
+    const gpu_resources& r = c.res;
+    bind_frame_textures(c);
+    bind_tile_dispatch(c);
+    c.programs.burley.use();
+    glBindImageTexture(EMCV_RENDER_IMG_COUNT, r.counts.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32UI);
+    glBindImageTexture(EMCV_RENDER_IMG_SSS_OUT, r.sss_out.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glDispatchComputeIndirect(0);
+    image_barrier_for_reads();
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the stats block is read back after the frame
+}
+
+void sss_adaptive_update(const frame_context& c) {
+    bind_frame_textures(c);
+    bind_tile_dispatch(c);
+    history_of(c).record_update(c.res.sss_out.id());
+}
+
+void sss_separable(const frame_context& c, int direction) {
+    const gpu_resources& r = c.res;
+    bind_frame_textures(c);
+    bind_tile_dispatch(c);
+    c.programs.separable.use();
+    const GLuint source = direction == 0 ? r.lit_diffuse.id() : r.sss_temp.id();
+    const GLuint target = direction == 0 ? r.sss_temp.id() : r.sss_out.id();
+    glBindTextureUnit(EMCV_RENDER_TEX_SSS_IN, source);
+    glBindImageTexture(EMCV_RENDER_IMG_SSS_OUT, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindBufferRange(GL_UNIFORM_BUFFER, EMCV_RENDER_PASS, r.pass_ubo.id(), r.pass_offset(r.separable_slot(direction)),
+                      sizeof(gpu::pass_block));
+    glDispatchComputeIndirect(0);
+    image_barrier_for_reads();
+}
+
+}  // namespace emcv::demo::passes

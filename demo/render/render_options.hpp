@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: MIT
+// emcv::demo::render_options: what a renderer is made with besides the scene and the method.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace emcv::demo {
+
+enum class tonemap_operator { aces, reinhard };
+
+/// timing::per_frame (headless evaluation) brackets each pass with glFinish and times it on the steady clock,
+/// so frame_stats holds this frame's times (on llvmpipe, whose GL_TIME_ELAPSED queries miss compute
+/// dispatches, the only correct measure). timing::asynchronous (interactive window) keeps a GPU timer ring per
+/// pass (demo/gl/timer.hpp) and never waits: frame_stats holds the newest finished measurement of each pass
+/// (a few frames old), or 0 before the first one is ready.
+enum class timing { per_frame, asynchronous };
+
+struct render_options {
+    int width = 128;
+    int height = 128;
+    std::uint32_t seed = 1;  ///< decorrelates the per-pixel, per-frame sample rotations
+    /// Draw Burley radii with SPVG's approximate inverse CDF (port/burley.h) instead of the exact one; the
+    /// exact pdf is evaluated either way. Applies to burley-N, reference and the adaptive methods.
+    bool approximate_inverse_cdf = false;
+    tonemap_operator tonemap = tonemap_operator::aces;
+    float exposure = 1.0f;  ///< linear radiance is multiplied by this before the tonemap
+    timing timing_mode = timing::per_frame;
+    /// Tunables of the port headers (`--define NAME=VALUE`, validated by demo/render/tunables.hpp), passed
+    /// to every shader as `#define NAME VALUE`.
+    std::vector<std::pair<std::string, std::string>> defines;
+    /// Where the GLSL passes and the port headers are read from at run time. Empty: $EMCV_SHADER_DIR /
+    /// $EMCV_INCLUDE_DIR when set, else the source tree (compile definitions of emcv_demo_render).
+    std::filesystem::path shader_dir;
+    std::filesystem::path include_dir;
+};
+
+}  // namespace emcv::demo

@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: MIT
+// The renderer's GPU resources (programs, geometry, buffers, targets, shadow maps), made once for a scene, a
+// method and a size, and the frame context the passes (passes/) record from. render() allocates nothing.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <vector>
+
+#include "gl/handles.hpp"
+#include "gl/program.hpp"
+#include "gpu_types.hpp"
+#include "method.hpp"
+#include "render_options.hpp"
+#include "scene/scene.hpp"
+#include "view.hpp"
+
+namespace emcv::demo {
+
+namespace adaptive {
+class history;  // demo/render/adaptive/history.hpp
+}
+
+/// Shadow maps are square, this many texels a side.
+inline constexpr int shadow_resolution = 1024;
+
+/// The GLSL programs of the passes (the adaptive passes' own live in adaptive::history).
+struct pass_programs {
+    gl::program gbuffer, shadow, lighting, tiles, dispatch, burley, separable, composite;
+};
+
+/// The shader options every pass is built with: include roots (render_options, else $EMCV_SHADER_DIR /
+/// $EMCV_INCLUDE_DIR, else the source tree) and the tunables' defines.
+struct shader_setup {
+    gl::preprocess_options preprocess;
+    std::filesystem::path shader_dir;
+};
+shader_setup make_shader_setup(const render_options& o);
+pass_programs make_pass_programs(const shader_setup& shaders);
+
+struct draw_call {
+    GLsizei index_count = 0;
+    std::size_t index_offset_bytes = 0;
+    GLint base_vertex = 0;
+    GLuint object = 0;
+    int albedo_map = -1;
+};
+
+struct gpu_resources {
+    int width = 0;
+    int height = 0;
+
+    // Geometry: every mesh in one vertex and index buffer, one draw per object (sorted by albedo map).
+    gl::buffer vertices, indices, object_ids;
+    gl::vertex_array vao;
+    std::vector<draw_call> draws;
+    std::vector<gl::texture_2d> albedo_maps;
+    gl::texture_2d white;
+    bounding_sphere world_bounds;
+
+    gl::buffer frame_ubo, lights_ssbo, materials_ssbo, objects_ssbo, stats_ssbo, tiles_ssbo, kernels_ssbo, pass_ubo;
+    GLint pass_stride = 256;  ///< bytes between per-pass constant ranges in pass_ubo
+
+    gl::texture_2d depth_buffer, gb_depth, gb_normal, gb_albedo, gb_material, gb_motion, lit_diffuse, lit_specular,
+        sss_out, sss_temp, counts, linear_out, display_out;
+    gl::framebuffer gbuffer_fbo;
+    gl::texture_2d shadow_maps;  ///< GL_TEXTURE_2D_ARRAY, one layer per light in shadow_lights
+    std::vector<gl::framebuffer> shadow_fbos;
+    std::vector<std::size_t> shadow_lights;  ///< light index per layer
+
+    /// Range of pass_ubo for slot k: shadow layers first, then the separable passes' two directions.
+    GLintptr pass_offset(std::size_t slot) const { return GLintptr{pass_stride} * static_cast<GLintptr>(slot); }
+    std::size_t separable_slot(int direction) const { return shadow_lights.size() + static_cast<std::size_t>(direction); }
+    /// Draws every object (gbuffer: binding each albedo map; shadow: geometry only).
+    void draw_objects(bool with_albedo_maps) const;
+};
+
+/// Validates the scene against the renderer's limits and makes every resource of the frame. Throws
+/// std::runtime_error naming the problem (a bad size, a texture without pixels, an incomplete framebuffer).
+gpu_resources make_gpu_resources(const scene& s, const method& m, int width, int height);
+
+/// Materials and, for the separable method, their kernels (built on the CPU from each SSS material's profile).
+void upload_materials(gpu_resources& r, const scene& s, const method& m);
+
+/// What a pass records from: the resources, this frame's scene and method, and the adaptive history.
+struct frame_context {
+    gpu_resources& res;
+    const pass_programs& programs;
+    const scene& s;
+    const method& m;
+    adaptive::history* history;  ///< the adaptive methods' (nullptr for the others)
+    int frame;
+    GLuint groups_x, groups_y;   ///< full-screen compute dispatch, EMCV_RENDER_TILE_SIZE pixels a side
+};
+
+}  // namespace emcv::demo
