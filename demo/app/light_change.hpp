@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The frame from which the summary compares cv with spvg (issue 9: the frames after a light switch).
+// The frame from which the summary compares cv with spvg (the frames after a light switch).
 #pragma once
 
 #include <optional>

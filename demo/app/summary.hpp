@@ -47,7 +47,7 @@ inline constexpr int switch_window_frames = 30;
 std::optional<std::string> compare_after_change(const std::vector<metrics_row>& rows, int first_change,
                                                 const std::string& name, const std::string& baseline);
 
-/// The table, then each of `notes` on its own line (issue 9: the cv vs spvg ratio line after the switch).
+/// The table, then each of `notes` on its own line (the cv vs spvg line after the switch).
 std::string format_summary(const std::vector<method_summary>& summaries, const std::vector<std::string>& notes = {});
 
 }  // namespace emcv::demo::app

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Order of attempts follows Magnum's WindowlessEglApplication (style.md 5.1): EGL_EXT_platform_device
+// Order of attempts follows Magnum's WindowlessEglApplication: EGL_EXT_platform_device
 // (device picked by index), then EGL_MESA_platform_surfaceless, then OSMesa, then a GLFW window on request.
 // The EGL display is never eglTerminate()d: it is a process-wide singleton shared with other users.
 // Once a platform's context is current, gl.hpp's entry points are loaded from that platform's resolver.

@@ -47,7 +47,7 @@ int file_index(state& st, const fs::path& p) {
     return static_cast<int>(st.files.size() - 1);
 }
 
-/// Mesa prints "0:<line>" whatever the source-string number of #line says (style.md section 6), so the file
+/// Mesa prints "0:<line>" whatever the source-string number of #line says, so the file
 /// index is also carried in the line number itself: line = index * kLinesPerFile + n.
 constexpr long kLinesPerFile = 1000000;
 long encode_line(int index, int n) { return static_cast<long>(index) * kLinesPerFile + n; }

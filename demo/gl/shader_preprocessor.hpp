@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // emcv::gl shader preprocessor: resolves #include "..." recursively, hoists #version / #extension, injects
 // #define lines and emits `#line <index * 1000000 + n> <index>` with a file table, so compile logs can be rewritten to name
-// the included file and line (style.md section 6: Mesa rejects file names in #line without ARB include).
+// the included file and line (Mesa rejects file names in #line without ARB include).
 #pragma once
 
 #include <filesystem>

@@ -12,7 +12,7 @@ namespace emcv::demo {
 
 double burley_marginal_tail(double t, double d) {
     // P(X > t) = int_0^1 [r(u) > t] acos(t / r(u)) / pi du: cos(theta) > t / r on an arc of 2 acos(t / r) out
-    // of 2 pi. Midpoint rule in u, r(u) the exact inverse CDF (reference/sss.md 1.2, in double).
+    // of 2 pi. Midpoint rule in u, r(u) the exact inverse CDF (docs/frame.md, in double).
     constexpr int steps = 8192;
     const double pi = 3.14159265358979323846;
     double sum = 0.0;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Separable SSS kernel (Jimenez 2015, reference/sss.md 3.1) built on the CPU from a material's Burley profile.
+// Separable SSS kernel (Jimenez 2015, docs/frame.md) built on the CPU from a material's Burley profile.
 #pragma once
 
 #include <vector>

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // emcv::demo scene model: what a scene file describes, after parsing and mesh loading, in world units.
-// Data flows one way (style.md): scene file -> scene (this header) -> pass list -> GPU passes -> images + metrics.
+// Data flows one way (docs/architecture.md): scene file -> scene (this header) -> pass list -> GPU passes -> images + metrics.
 // The renderer reads a scene; it never parses files and never changes the scene.
 #pragma once
 

@@ -56,7 +56,7 @@ T cv_residual_variance(T c_ff, T c_fg, T c_gg, T alpha) noexcept {
 /// The residual variance at the optimal coefficient, min over alpha of Var(f - alpha G) (Eq. 31):
 ///     alpha* = C_fG / C_GG,   Var(f - alpha* G) = C_ff - C_fG^2 / C_GG.
 /// The adaptive sample count is proportional to this variance (N = Var / target), and the alpha that minimises
-/// N is the alpha that minimises the variance: one EMCM gives both (joint optimisation, PAPER.md section 5).
+/// N is the alpha that minimises the variance: one EMCM gives both (joint optimisation, Xie & Olano 2021, section 5).
 /// Evaluated as C_ff - alpha* C_fG with alpha* = cv_coefficient(C_fG, C_GG, var_floor), so where alpha's guard
 /// gives 0 (C_GG not above the floor, non-finite C_fG) the result is C_ff: no control variate, the variance
 /// of f itself, which can only over-state what the sampler needs. Clamped to >= 0 like cv_residual_variance.
@@ -73,7 +73,7 @@ T cv_optimal_residual_variance(const emcm<T, 2>& fg, T var_floor = std::numeric_
     return cv_optimal_residual_variance(fg.variance(0), fg.covariance(0, 1), fg.variance(1), var_floor);
 }
 
-/// The residuals compared in the paper's toy experiment (PAPER.md section 3, Table 1). In every policy the
+/// The residuals compared in the paper's toy experiment (Xie & Olano 2021, section 3, Table 1). In every policy the
 /// coefficient applied to frame t comes from frames up to t - 1.
 enum class residual_policy {
     none,              ///< Res_f = fbar: no control variate, alpha = 0

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 /// \file
 /// emcv adaptive sample counts: SPVG's N = clamp(var / target, n_min, n_max) and Unreal's
-/// "true distribution" variant (reference/sss.md section 2.7).
+/// "true distribution" variant (docs/frame.md).
 #pragma once
 
 #include <cmath>

@@ -15,9 +15,10 @@ what that means). Stages, each writing its raw CSV under docs/results/raw/ first
   scaling  emcv-eval: SSS ms and samples against resolution and against the scattering radius (--sss-scale).
   spread   emcv-golden: the golden cases rendered with seed 2 against the goldens (seed 1): how far an image
            moves when every sample position moves, the bound for the tolerance another GPU needs.
-The adaptive knobs (target variance, N max) are compile-time constants of the shared port
-(include/emcv/port/history.h, EMCV_HISTORY_TARGET / EMCV_HISTORY_N_MAX) that the renderer compiles into its GLSL
-at run time: each setting is a copy of include/ with the two #defines rewritten, passed as EMCV_INCLUDE_DIR.
+The adaptive knobs (target variance, N max) are tunables of the shared port (include/emcv/port/history.h,
+EMCV_HISTORY_TARGET / EMCV_HISTORY_N_MAX) that the renderer compiles into its GLSL at run time: each setting
+is passed as `--define NAME=VALUE`. The adaptive methods are the rows of emcv-demo --list-methods whose
+passes are "adaptive" (the method table).
 --plots-only redraws from the raw CSVs without rendering. Outputs are written to temporary names and renamed.
 """
 import argparse
@@ -43,7 +44,7 @@ QUALITY_SCENES = ["static", "light-off", "flicker", "club"]
 QUALITY_FRAMES = {"static": 16, "light-off": 60, "flicker": 30, "club": 30}
 FIXED_METHODS = ["diffuse"] + [f"burley-{n}" for n in (1, 2, 4, 8, 16, 32, 64)] + \
                 [f"separable-{t}" for t in (11, 17, 25)]
-ADAPTIVE = ["spvg", "cv", "cv-notex"]
+ADAPTIVE = []  # filled from emcv-demo --list-methods in main()
 DEFAULT_TARGET, DEFAULT_NMAX = 1e-4, 64
 # (target variance, N max): the target sweep at SPVG's N max, then N max at SPVG's target.
 ADAPTIVE_KNOBS = [(4e-4, 64), (1e-4, 64), (2.5e-5, 64), (1e-4, 32), (1e-4, 16)]
@@ -87,27 +88,26 @@ def snapshot_shaders(tmp):
     return d
 
 
-def renderer_env(tmp, target=DEFAULT_TARGET, nmax=DEFAULT_NMAX):
+def renderer_env(tmp):
+    """Snapshots of shaders/ and include/ taken once: every run of this evaluation compiles the same GLSL."""
     env = dict(os.environ)
     env["EMCV_SHADER_DIR"] = snapshot_shaders(tmp)
-    env["EMCV_INCLUDE_DIR"] = knob_include_dir(tmp, target, nmax)
+    d = os.path.join(tmp, "include")
+    if not os.path.isdir(d):
+        shutil.copytree(os.path.join(ROOT, "include"), d)
+    env["EMCV_INCLUDE_DIR"] = d
     return env
 
 
-def knob_include_dir(tmp, target, nmax):
-    """A copy of include/ whose port/history.h has the given target variance and N max."""
-    d = os.path.join(tmp, knob_label(target, nmax))
-    if os.path.isdir(d):
-        return d
-    shutil.copytree(os.path.join(ROOT, "include"), d)
-    h = os.path.join(d, "emcv", "port", "history.h")
-    text = open(h).read()
-    text, a = re.subn(r"#define EMCV_HISTORY_TARGET [^\s/]+", f"#define EMCV_HISTORY_TARGET {target:.6e}f", text)
-    text, b = re.subn(r"#define EMCV_HISTORY_N_MAX \d+", f"#define EMCV_HISTORY_N_MAX {nmax}", text)
-    if a != 1 or b != 1:
-        die(f"{h}: expected one EMCV_HISTORY_TARGET and one EMCV_HISTORY_N_MAX #define")
-    open(h, "w").write(text)
-    return d
+def knob_defines(target, nmax):
+    """The renderer's --define arguments for a knob setting (validated by the renderer)."""
+    return ["--define", f"EMCV_HISTORY_TARGET={target:.6e}", "--define", f"EMCV_HISTORY_N_MAX={nmax}"]
+
+
+def methods_from_table(build, passes):
+    """Method names whose row in the method table records the given SSS passes (emcv-demo --list-methods)."""
+    rows = [line.split("\t") for line in run([os.path.join(build, "bin", "emcv-demo"), "--list-methods"]).splitlines()]
+    return [r[0] for r in rows if len(r) >= 2 and r[1] == passes]
 
 
 def read_csv_text(text):
@@ -134,12 +134,13 @@ def stage_quality(a, tmp):
     demo = os.path.join(a.build, "bin", "emcv-demo")
     for scene in QUALITY_SCENES:
         for seed in a.seeds:
-            jobs = [("fixed", FIXED_METHODS, renderer_env(tmp))]
-            jobs += [(knob_label(t, n), ADAPTIVE, renderer_env(tmp, t, n)) for t, n in ADAPTIVE_KNOBS]
-            for label, methods, env in jobs:
+            jobs = [("fixed", FIXED_METHODS, [])]
+            jobs += [(knob_label(t, n), ADAPTIVE, knob_defines(t, n)) for t, n in ADAPTIVE_KNOBS]
+            env = renderer_env(tmp)
+            for label, methods, defines in jobs:
                 out = os.path.join(tmp, f"q-{scene}-{seed}-{label}")
                 cmd = [demo, "--scene", scene, "--method", ",".join(methods), "--size", a.size,
-                       "--seed", str(seed), "--out", out]
+                       "--seed", str(seed), "--out", out] + defines
                 cmd += ["--frames", str(a.frames or QUALITY_FRAMES[scene])]
                 print(f"  quality: {scene} seed {seed} {label}", flush=True)
                 first = run(cmd, env).splitlines()[0]  # "scene S, WxH, N frames, seed S, <GL renderer>"
@@ -539,6 +540,10 @@ def main():
     for exe in ("emcv-demo", "emcv-eval", "emcv-golden"):
         if not a.plots_only and not os.access(os.path.join(a.build, "bin", exe), os.X_OK):
             die(f"no {exe} in {a.build}/bin (cmake --build {a.build} --target emcv-demo emcv-eval emcv-golden)")
+    if os.access(os.path.join(a.build, "bin", "emcv-demo"), os.X_OK):
+        ADAPTIVE[:] = methods_from_table(a.build, "adaptive")
+    else:  # --plots-only without a build: the adaptive methods the raw quality runs rendered
+        ADAPTIVE[:] = sorted({r["method"] for r in read_csv(os.path.join(RAW, "quality.csv")) if r["knobs"] != "fixed"})
     os.makedirs(RAW, exist_ok=True)
     device_file = os.path.join(RAW, "device.txt")
     cost_size = "64x64" if a.quick else "128x128"

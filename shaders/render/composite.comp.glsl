@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Composite and tonemap: albedo * (scattered diffuse at SSS pixels when the SSS pass ran, else the lighting's
-// diffuse) + specular (post-scatter texturing, sss.md 2.10), the background elsewhere; then the scene's
+// diffuse) + specular (post-scatter texturing, docs/frame.md), the background elsewhere; then the scene's
 // exposure, the tonemap and the sRGB encoding of include/emcv/port/tonemap.h.
 #version 450 core
 

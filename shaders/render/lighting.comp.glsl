@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Lighting pass: per pixel, the diffuse irradiance / pi without albedo (what scattering blurs, post-scatter
-// texturing as UE) and the specular GGX radiance, kept apart so the specular never scatters (sss.md 5).
+// texturing as UE) and the specular GGX radiance, kept apart so the specular never scatters (docs/frame.md).
 #version 450 core
 
 #include "render/gbuffer_read.h"

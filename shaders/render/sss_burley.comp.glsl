@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Burley screen-space SSS over the SSS tiles (indirect dispatch): N samples per scattering pixel drawn with the
-// widest channel, weighted per channel, sum(w L) / sum(w) (sss.md 1.4, 2.5). Every formula is from
+// widest channel, weighted per channel, sum(w L) / sum(w) (docs/frame.md). Every formula is from
 // include/emcv/port/sss.h. N is the frame's fixed count (burley-N, reference); the adaptive methods will read
 // it per pixel from the count texture instead.
 #version 450 core
@@ -42,7 +42,7 @@ uint scatter(ivec2 p) {
         float r = emcv_sss_sample_radius(u.x, d_sample, approximate);
         vec2 offset = emcv_sss_offset_pixels(r, u.y, pixels_per_mm);
         ivec2 q = ivec2(floor(vec2(p) + 0.5f + offset));
-        // Off-screen and non-scattering samples get weight 0 (sss.md 2.5 mask).
+        // Off-screen and non-scattering samples get weight 0 (docs/frame.md).
         if (!emcv_render_on_screen(q) || !emcv_render_scatters(emcv_render_material_code(q))) continue;
         float dz_mm = (emcv_render_depth(q) - z) * mm_per_unit;
         vec3 w = emcv_sss_weight(r, emcv_sss_depth_aware_radius(r, dz_mm), d, d_sample);

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
-// Separable SSS (Jimenez 2015, sss.md 3): one 1-D pass along pass.ints.xy over the SSS tiles (indirect
+// Separable SSS (Jimenez 2015, docs/frame.md): one 1-D pass along pass.ints.xy over the SSS tiles (indirect
 // dispatch); run twice (horizontal from the lighting, vertical from the horizontal result). The kernel
 // (rgb weights, offset in mm) is built on the CPU per material (demo/render/separable_kernel.cpp). Offsets
-// are mapped to pixels with the same pixelsPerMm in x and y (square pixels: no aspect error, sss.md 3.6).
-// Follow-surface (sss.md 3.3): a tap across a depth step s = saturate(|dz| / kernel half-width) is pulled
+// are mapped to pixels with the same pixelsPerMm in x and y (square pixels: no aspect error, docs/frame.md).
+// Follow-surface (docs/frame.md): a tap across a depth step s = saturate(|dz| / kernel half-width) is pulled
 // to the centre colour; taps off screen or on non-scattering pixels take the centre colour.
 #version 450 core
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// SSS tile classification (sss.md 2.2): one workgroup per 8x8 tile of the screen; a tile holding a scattering
+// SSS tile classification (docs/frame.md): one workgroup per 8x8 tile of the screen; a tile holding a scattering
 // pixel is appended to the tile list (its count in the list's header; sss_dispatch.comp.glsl then writes the
 // indirect dispatch arguments of the SSS passes, which so run over SSS tiles only). Also counts the SSS
 // pixels (frame_stats.sss_pixels).

@@ -1,8 +1,7 @@
 #!/usr/bin/env bash
 # docs/renderer.md, "The light-switch targets": one knob of cv's count rule swept without rebuilding. The shaders
-# include the port at run time, and EMCV_INCLUDE_DIR points them at a copy of include/ with the knob edited in
-# include/emcv/port/history.h:
-#   floor   the residual rule's floor (emcv_history_count_residual: cv and cv-notex, everywhere; SPVG keeps 8)
+# include the port at run time, and emcv-demo --define sets the port's tunable (include/emcv/port/history.h):
+#   floor   the residual rule's floor (EMCV_HISTORY_RESIDUAL_N_MIN: cv and cv-notex, everywhere; SPVG keeps 8)
 #   settle  cv's settling floor after a light change (EMCV_HISTORY_CV_SETTLE_N; 8 = no settling, the paper's rule)
 # For each value it prints, on light-off, the summary's cv vs spvg line over the 30 frames from the switch; on
 # flicker and club, cv's mean N and PSNR against spvg's over the whole sequence; on static, the same over frames
@@ -25,7 +24,6 @@ for v in "${values[@]}"; do
 done
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
-header="$work/include/emcv/port/history.h"
 compare() {  # metrics.csv, first frame, label
   /usr/bin/python3 - "$@" <<'PY'
 import csv, sys
@@ -41,18 +39,10 @@ print(f"  {label}, frames {first}-{last}: cv's mean N {n:.3f}x spvg's, PSNR {db:
 PY
 }
 for v in "${values[@]}"; do
-  rm -rf "$work/include" "$work/out"
-  cp -r "$root/include" "$work/include"
-  if [ "$knob" = floor ]; then
-    sed -i "s/(residual_variance, EMCV_HISTORY_TARGET, EMCV_HISTORY_SPVG_N_MIN,/(residual_variance, EMCV_HISTORY_TARGET, $v,/" "$header"
-    edited=$(grep -c "EMCV_HISTORY_TARGET, $v, EMCV_HISTORY_N_MAX" "$header" || true)
-  else
-    sed -i "s/^#define EMCV_HISTORY_CV_SETTLE_N .*/#define EMCV_HISTORY_CV_SETTLE_N $v/" "$header"
-    edited=$(grep -c "^#define EMCV_HISTORY_CV_SETTLE_N $v\$" "$header" || true)
-  fi
-  [ "$edited" = 1 ] || { echo "count_sweep.sh: could not edit the $knob in include/emcv/port/history.h" >&2; exit 1; }
+  rm -rf "$work/out"
+  if [ "$knob" = floor ]; then define="EMCV_HISTORY_RESIDUAL_N_MIN=$v"; else define="EMCV_HISTORY_CV_SETTLE_N=$v"; fi
   echo "$knob $v:"
-  run() { EMCV_INCLUDE_DIR="$work/include" LIBGL_ALWAYS_SOFTWARE=1 "$build/bin/emcv-demo" --method spvg,cv \
+  run() { LIBGL_ALWAYS_SOFTWARE=1 "$build/bin/emcv-demo" --method spvg,cv --define "$define" \
             --size "$size" --seed 1 "$@"; }
   run --scene light-off | grep '^cv vs spvg' | sed 's/^/  light-off: /'
   for scene in flicker club; do

@@ -78,7 +78,7 @@ public:
             case estimator::spvg: res_.push(f); break;
             case estimator::cv_notex: res_.push(cv_residual(f, 1.0f, g)); break;
             case estimator::cv_moving: {
-                // r_t with alpha_{t-1}, then the EMCM advances to alpha_t (PAPER.md section 5).
+                // r_t with alpha_{t-1}, then the EMCM advances to alpha_t (Xie & Olano 2021, section 5).
                 const float alpha = cv_coefficient(fg_.covariance(0, 1), fg_.variance(1));
                 res_.push(cv_residual(f, alpha, g));
                 fg_.push({f, g});

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The per-pixel study of PAPER.md section 5: one SSS pixel's adaptive-sampling loop simulated on the CPU with
+// The per-pixel study of Xie & Olano 2021, section 5: one SSS pixel's adaptive-sampling loop simulated on the CPU with
 // the library's own estimators (emcv::emcm, emcv::moving_stats, emcv::cv_coefficient, emcv::sample_count), to
 // choose the residual variance that drives the control-variate sample count (docs/renderer.md).
 #pragma once

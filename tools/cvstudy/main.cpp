@@ -18,7 +18,7 @@ using namespace emcv::cvstudy;
 
 const char* usage =
     "usage: emcv-cvstudy [--pixels N] [--seed S] [--half-state all|means]\n"
-    "  Simulates one SSS pixel's adaptive-sampling loop (PAPER.md section 5) over N pixels (default 400)\n"
+    "  Simulates one SSS pixel's adaptive-sampling loop (Xie & Olano 2021, section 5) over N pixels (default 400)\n"
     "  with fixed seeds and prints, per light curve, mean samples and PSNR over the 30 frames from the\n"
     "  switch / first burst, for spvg, the cv residual-variance choices and cv-notex.\n"
     "  --half-state all|means rounds every history field, or only the means, to binary16 after each\n"

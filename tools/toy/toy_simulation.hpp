@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The toy experiment of the supplementary, section 3 (PAPER.md section 3): five control-variate residuals of
+// The toy experiment of the supplementary, section 3 (Xie & Olano 2021, section 3): five control-variate residuals of
 // f(y,t) = h(t)/(1+y) with the control g(y,t) = h(t)(1-y), built only from emcv's public estimators.
 #pragma once
 

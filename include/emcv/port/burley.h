@@ -3,7 +3,7 @@
 /// emcv/port/burley.h — Burley normalized diffusion: profile, radial pdf, CDF and radius sampling, in the
 /// shared C++/GLSL dialect (fp32).
 //
-// ABOUT      Per colour channel with shape distance d = l / s(A) > 0 (PAPER.md section 4, reference/sss.md 1):
+// ABOUT      Per colour channel with shape distance d = l / s(A) > 0 (Xie & Olano 2021, section 4, docs/frame.md):
 //                R(r)   = (e^{-r/d} + e^{-r/(3d)}) / (8 pi d r)          area profile, integral R 2 pi r dr = 1
 //                p(r)   = (e^{-r/d} + e^{-r/(3d)}) / (4 d)               radial pdf, p = 2 pi r R
 //                F(r)   = 1 - e^{-r/d} / 4 - 3 e^{-r/(3d)} / 4           CDF
@@ -45,7 +45,7 @@ EMCV_FN float emcv_burley_cdf(float r, float d) {
     return 1.0f - 0.25f * exp(-r / d) - 0.75f * exp(-r / (3.0f * d));
 }
 
-/// Exact inverse of the CDF, u in [0, 1): closed form (reference/sss.md 1.2, method 1).
+/// Exact inverse of the CDF, u in [0, 1): closed form (Golubev; docs/frame.md).
 EMCV_FN float emcv_burley_sample_exact(float u, float d) {
     float v = 1.0f - u;
     float g = 1.0f + 4.0f * v * (2.0f * v + sqrt(1.0f + 4.0f * v * v));

@@ -18,7 +18,7 @@
 //            A history younger than two frames has no variance yet and asks for n_max (as on a reset), not
 //            for the 0 that n_min = 0 would give.
 // USAGE      EmcvMovingStats s; bool ok = emcv_history_decode_stats(texel, s);  int n = emcv_history_count_spvg(s);
-// REFERENCES Xie & Olano 2021 (PAPER.md 4-5); SPVG 2020 (eta 0.2, N = clamp(var / 1e-4, 8, 64)).
+// REFERENCES Xie & Olano 2021 (Xie & Olano 2021, section 4-5); SPVG 2020 (eta 0.2, N = clamp(var / 1e-4, 8, 64)).
 #ifndef EMCV_PORT_HISTORY_H
 #define EMCV_PORT_HISTORY_H
 
@@ -143,13 +143,11 @@ EMCV_FN int emcv_history_count_spvg(EMCV_IN(EmcvMovingStats) s) {
     return emcv_sample_count(s.variance, EMCV_HISTORY_TARGET, EMCV_HISTORY_SPVG_N_MIN, EMCV_HISTORY_N_MAX);
 }
 
-/// The control-variate methods' count from a residual variance: SPVG's clamp(var / 1e-4, 8, 64), NaN -> 64.
-/// The floor 8 stays, so a static scene is sampled as SPVG samples it (docs/renderer.md: a plain n_min = 0
-/// took 1 sample per pixel on light-off's static frames, 13 dB under SPVG); the gain comes from the residual
-/// variance staying low when the light changes. The 0 samples of n_min = 0 are decided by the kernel's
-/// footprint (emcv_history_sub_pixel), not by a zero variance: a 64-sample estimate stored in half precision
-/// repeats bit for bit from one frame to the next, and a variance of exactly 0 read as "no samples" showed
-/// plain diffuse on 70% of static's SSS pixels at frame 2 (docs/renderer.md).
+/// The control-variate methods' count from a residual variance: clamp(var / target, RESIDUAL_N_MIN, N_MAX),
+/// NaN -> N_MAX. The floor keeps a static scene sampled as SPVG samples it, so the gain comes from the residual
+/// variance staying low when the light changes; a variance of exactly 0 never means "no samples" (a history
+/// stored in half precision can repeat bit for bit), only a sub-pixel kernel does (emcv_history_sub_pixel).
+/// docs/renderer.md has the measurements behind both choices.
 EMCV_FN int emcv_history_count_residual(float residual_variance) {
     return emcv_sample_count(residual_variance, EMCV_HISTORY_TARGET, EMCV_HISTORY_RESIDUAL_N_MIN, EMCV_HISTORY_N_MAX);
 }

@@ -2,16 +2,16 @@
 // emcv/port/sss.h — the per-pixel screen-space SSS maths of the renderer, in the shared C++/GLSL dialect (fp32).
 //
 // ABOUT      Written once; the GLSL passes (shaders/render/) include it and the C++ tests call it.
-//            Scaling fit s(A), search-light form (reference/sss.md 1.3, as UE uses it for sampling and
+//            Scaling fit s(A), search-light form (docs/frame.md, as UE uses it for sampling and
 //            evaluation):            s(A) = 3.5 + 100 (A - 0.33)^4
-//            Shape distance per channel (PAPER.md 4):           d_c = l_c / s(A_c)   (mm)
-//            Radii are drawn with the widest channel d_max = max_c d_c and weighted per channel (sss.md 1.4):
-//                w_c = r_e R_c(r_e) / p_max(r),   r_e = sqrt(r^2 + dz_mm^2)   (depth-aware radius, sss.md 2.5)
+//            Shape distance per channel (Xie & Olano 2021, section 4):           d_c = l_c / s(A_c)   (mm)
+//            Radii are drawn with the widest channel d_max = max_c d_c and weighted per channel (docs/frame.md):
+//                w_c = r_e R_c(r_e) / p_max(r),   r_e = sqrt(r^2 + dz_mm^2)   (depth-aware radius, docs/frame.md)
 //            the output is sum_i w_c L_i / sum_i w_c per channel (constant factors cancel).
 //            Sample i of N: (u_r, u_theta) = frac(R2(i) + rotation), rotation per pixel and frame from the PCG
 //            hash (Cranley-Patterson rotation of the R2 sequence: each pixel gets a well stratified set, and
-//            the sets of neighbouring pixels and frames decorrelate; UE5 rebases R2 the same way, sss.md 2.4).
-//            World to screen (sss.md 5, exact for a perspective projection with P00 = cot(fov_x / 2)):
+//            the sets of neighbouring pixels and frames decorrelate; UE5 rebases R2 the same way, docs/frame.md).
+//            World to screen (docs/frame.md, exact for a perspective projection with P00 = cot(fov_x / 2)):
 //                pixelsPerMm = 0.5 P00 viewportWidth / (z_view mm_per_unit)
 // USAGE      vec3 d = emcv_sss_shape_distance(mfp_mm, albedo); float dmax = emcv_sss_widest(d);
 //            vec2 u = emcv_sss_sample_uv(i, emcv_sss_rotation(px, py, frame, seed));
@@ -25,26 +25,26 @@
 
 EMCV_PORT_BEGIN
 
-/// s(A) = 3.5 + 100 (A - 0.33)^4: Christensen-Burley search-light fit (reference/sss.md 1.3).
+/// s(A) = 3.5 + 100 (A - 0.33)^4: Christensen-Burley search-light fit (docs/frame.md).
 EMCV_FN float emcv_sss_scaling(float albedo) {
     float a = albedo - 0.33f;
     float a2 = a * a;
     return 3.5f + 100.0f * a2 * a2;
 }
 
-/// d_c = l_c / s(A_c) per channel, in the unit of the mean free path (mm). PAPER.md 4.
+/// d_c = l_c / s(A_c) per channel, in the unit of the mean free path (mm). Xie & Olano 2021, section 4.
 EMCV_FN vec3 emcv_sss_shape_distance(vec3 mean_free_path_mm, vec3 albedo) {
     return vec3(mean_free_path_mm.x / emcv_sss_scaling(albedo.x),
                 mean_free_path_mm.y / emcv_sss_scaling(albedo.y),
                 mean_free_path_mm.z / emcv_sss_scaling(albedo.z));
 }
 
-/// The widest channel's shape distance: radii are drawn from its profile (sss.md 1.4, HDRP's shapeParam.w).
+/// The widest channel's shape distance: radii are drawn from its profile (docs/frame.md, HDRP's shapeParam.w).
 EMCV_FN float emcv_sss_widest(vec3 d) {
     return max(d.x, max(d.y, d.z));
 }
 
-/// Screen pixels per millimetre at view depth z_view (world units, > 0): 0.5 P00 W / (z mm_per_unit) (sss.md 5).
+/// Screen pixels per millimetre at view depth z_view (world units, > 0): 0.5 P00 W / (z mm_per_unit) (docs/frame.md).
 EMCV_FN float emcv_sss_pixels_per_mm(float p00, float viewport_width, float z_view, float mm_per_unit) {
     return 0.5f * p00 * viewport_width / (z_view * mm_per_unit);
 }
@@ -62,7 +62,7 @@ EMCV_FN vec2 emcv_sss_sample_uv(uint i, vec2 rotation) {
 }
 
 /// A radius (mm) with pdf p(r; d): the exact inverse CDF, or SPVG's approximation when `approximate`
-/// (whose true density differs slightly: the weight still divides by the exact pdf, sss.md 1.2).
+/// (whose true density differs slightly: the weight still divides by the exact pdf, docs/frame.md).
 EMCV_FN float emcv_sss_sample_radius(float u, float d, bool approximate) {
     if (approximate) return emcv_burley_sample_spvg(u, d);
     return emcv_burley_sample_exact(u, d);
@@ -75,13 +75,13 @@ EMCV_FN vec2 emcv_sss_offset_pixels(float r_mm, float u_theta, float pixels_per_
     return vec2(r_px * cos(theta), r_px * sin(theta));
 }
 
-/// r_e = sqrt(r^2 + dz^2): the distance through the surface's depth step (sss.md 2.5, in mm here).
+/// r_e = sqrt(r^2 + dz^2): the distance through the surface's depth step (docs/frame.md, in mm here).
 EMCV_FN float emcv_sss_depth_aware_radius(float r_mm, float dz_mm) {
     return sqrt(r_mm * r_mm + dz_mm * dz_mm);
 }
 
 /// Per-channel weight r_e R_c(r_e) / p_max(r) of one sample drawn at radius r with the widest channel
-/// d_sample (sss.md 1.4 and 2.5; the profile at r_e, the pdf at r, as UE with RESAMPLE_PDF 0).
+/// d_sample (docs/frame.md; the profile at r_e, the pdf at r, as UE with RESAMPLE_PDF 0).
 EMCV_FN vec3 emcv_sss_weight(float r_mm, float r_e_mm, vec3 d, float d_sample) {
     float rcp_pdf = 1.0f / emcv_burley_pdf(r_mm, d_sample);
     return vec3(emcv_burley_profile_r(r_e_mm, d.x), emcv_burley_profile_r(r_e_mm, d.y),

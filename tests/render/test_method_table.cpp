@@ -1,0 +1,160 @@
+// SPDX-License-Identifier: MIT
+// The method table (render/method.hpp) and the tunables (render/tunables.hpp): names round-trip through the
+// parser, each row's SSS passes are the ones the planner lists, the tunables list equals the port headers'
+// #ifndef blocks, --define values are validated, and a define reaches the shaders.
+#include <catch2/catch_test_macros.hpp>
+#include <catch2/matchers/catch_matchers_string.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "../gpu/gl_test_support.hpp"
+#include "gl/debug.hpp"
+#include "render/renderer.hpp"
+#include "render/tunables.hpp"
+#include "render_test_support.hpp"
+#include "scene/load.hpp"
+
+using namespace emcv::demo;
+using Catch::Matchers::ContainsSubstring;
+
+TEST_CASE("every method's name parses back to the method, and the parameters' edges are enforced") {
+    for (const method_row& r : method_table()) {
+        INFO("row " << r.name);
+        const method m{r.type, r.in_all >= 0 ? r.in_all : r.parameter.default_value};
+        const std::optional<method> back = parse_method(m.name());
+        REQUIRE(back);
+        CHECK(*back == m);
+        CHECK(is_adaptive(m) == (r.history != history_layout::none));
+        CHECK(r.alpha_heatmap == (r.history == history_layout::emcm2));
+    }
+    CHECK(parse_method("burley-1") == method{method::kind::burley, 1});
+    CHECK(parse_method("burley-1024") == method{method::kind::burley, 1024});
+    CHECK_FALSE(parse_method("burley-0"));
+    CHECK_FALSE(parse_method("burley-1025"));
+    CHECK_FALSE(parse_method("burley"));
+    CHECK(parse_method("separable") == method{method::kind::separable, 17});
+    CHECK(parse_method("separable-25") == method{method::kind::separable, 25});
+    CHECK_FALSE(parse_method("separable-13"));
+    CHECK_FALSE(parse_method("reference-64"));  // tests set other counts in code, the command line cannot
+    CHECK_FALSE(parse_method("cv-1"));
+    CHECK_FALSE(parse_method("cv-"));
+    CHECK(make_reference(256).name() == "reference-256");
+    CHECK(accepted_method_names() ==
+          "diffuse, burley-N (N = 1..1024), separable[-11|-17|-25], reference, spvg, cv, cv-notex");
+}
+
+TEST_CASE("the planner lists each row's SSS passes, and only for a scene that calls for them") {
+    const scene sphere = emcv::test::sphere_on_floor();
+    const std::vector<std::pair<sss_passes, std::vector<std::string>>> expected{
+        {sss_passes::none, {}},
+        {sss_passes::burley, {"sss-tiles", "sss-burley"}},
+        {sss_passes::separable, {"sss-tiles", "sss-separable-h", "sss-separable-v"}},
+        {sss_passes::adaptive, {"sss-tiles", "sss-adaptive-samples", "sss-burley", "sss-adaptive-update"}},
+    };
+    for (const method& m : all_methods()) {
+        INFO("method " << m.name());
+        std::vector<std::string> sss;
+        for (const std::string& p : pass_list(sphere, m, 0, 64, 48))
+            if (p.rfind("sss-", 0) == 0) sss.push_back(p);
+        for (const auto& [passes, names] : expected)
+            if (row_of(m).passes == passes) CHECK(sss == names);
+        for (const std::string& p : pass_list(emcv::test::no_sss(), m, 0, 64, 48)) CHECK(p.rfind("sss-", 0) != 0);
+    }
+}
+
+TEST_CASE("the reference's planner drops its SSS passes while its inputs hold, as the renderer does") {
+    const scene s = emcv::test::sphere_on_floor();
+    frame_planner planner(s, make_reference(64), 48, 32);
+    const auto sss_passes_of = [&](const std::vector<planned_pass>& plan) {
+        int n = 0;
+        for (const planned_pass& p : plan) n += is_sss_pass(p.id) ? 1 : 0;
+        return n;
+    };
+    CHECK(sss_passes_of(planner.plan(0)) == 2);
+    CHECK_FALSE(planner.reuses_result());
+    CHECK(sss_passes_of(planner.plan(1)) == 0);  // same camera and lights
+    CHECK(planner.reuses_result());
+    CHECK(sss_passes_of(planner.plan(2, {0.0f})) == 2);  // the first light off: new inputs
+    planner.reset();
+    CHECK(sss_passes_of(planner.plan(3, {0.0f})) == 2);  // nothing held after a reset
+}
+
+TEST_CASE("the tunables are exactly the #ifndef blocks of the port headers") {
+    // Every `#ifndef NAME` followed by `#define NAME` that is not an include guard (NAME ends in _H).
+    std::set<std::string> in_headers;
+    const std::regex block(R"(#ifndef (EMCV_\w+)\s*\n#define \1[ \t]+\S)");
+    for (const auto& e : std::filesystem::directory_iterator(std::string(EMCV_SOURCE_DIR) + "/include/emcv/port")) {
+        if (e.path().filename() == "port.h") continue;  // the dialect's qualifier macros, not tunables
+        std::ifstream in(e.path());
+        std::stringstream text;
+        text << in.rdbuf();
+        const std::string s = text.str();
+        for (auto it = std::sregex_iterator(s.begin(), s.end(), block); it != std::sregex_iterator(); ++it) {
+            const std::string name = (*it)[1];
+            if (name.size() < 2 || name.substr(name.size() - 2) != "_H") in_headers.insert(name);
+        }
+    }
+    std::set<std::string> listed;
+    for (const tunable& t : tunables()) listed.insert(std::string(t.name));
+    CHECK(listed == in_headers);
+}
+
+TEST_CASE("--define values are validated and written as GLSL literals of the tunable's type") {
+    CHECK(parse_define("EMCV_HISTORY_N_MAX=32") == std::pair<std::string, std::string>{"EMCV_HISTORY_N_MAX", "32"});
+    CHECK(parse_define("EMCV_HISTORY_MAX_COUNT=512").second == "512u");
+    CHECK(parse_define("EMCV_HISTORY_TARGET=2.5e-5").second == "2.500000000e-05f");
+    CHECK(parse_define("EMCV_HISTORY_ETA_EMCM=1").second == "1.000000000e+00f");
+    const auto fails = [](const char* text, const char* why) {
+        INFO(text);
+        CHECK_THROWS_WITH(parse_define(text), ContainsSubstring(why));
+    };
+    fails("EMCV_HISTORY_NMAX=3", "unknown tunable 'EMCV_HISTORY_NMAX'");
+    fails("EMCV_HISTORY_N_MAX", "expected NAME=VALUE");
+    fails("=3", "expected NAME=VALUE");
+    fails("EMCV_HISTORY_N_MAX=", "expected NAME=VALUE");
+    fails("EMCV_HISTORY_N_MAX=0", "an integer in [1, 1024]");
+    fails("EMCV_HISTORY_N_MAX=2.5", "an integer in [1, 1024]");
+    fails("EMCV_HISTORY_N_MAX=-4", "an integer in [1, 1024]");
+    fails("EMCV_HISTORY_TARGET=0", "a number in (0, 1]");
+    fails("EMCV_HISTORY_TARGET=1e400", "a number in (0, 1]");
+    fails("EMCV_HISTORY_TARGET=nan", "a number in (0, 1]");
+    fails("EMCV_HISTORY_ETA_EMCM=0.05;", "a number in (0, 1]");
+    std::vector<std::pair<std::string, std::string>> defines;
+    add_define(defines, "EMCV_HISTORY_N_MAX=32");
+    add_define(defines, "EMCV_HISTORY_SPVG_N_MIN=4");
+    add_define(defines, "EMCV_HISTORY_N_MAX=16");  // a later value wins
+    CHECK(defines == std::vector<std::pair<std::string, std::string>>{{"EMCV_HISTORY_SPVG_N_MIN", "4"},
+                                                                        {"EMCV_HISTORY_N_MAX", "16"}});
+}
+
+TEST_CASE("a --define reaches the shaders: spvg's floor and cap move the sample counts") {
+    emcv::gl::context ctx = emcv::test::context_or_skip();
+    emcv::gl::debug_messenger messenger;
+    const scene s = load_scene_argument("static");
+    const auto spp = [&](const std::vector<std::pair<std::string, std::string>>& defines) {
+        render_options o;
+        o.width = 48;
+        o.height = 48;
+        o.defines = defines;
+        renderer r(s, *parse_method("spvg"), o);
+        frame_stats last;
+        for (int frame = 0; frame < 4; ++frame) last = r.render(frame);
+        return last;
+    };
+    // Defaults: a static light sits at spvg's floor 8 once the history has two frames.
+    const frame_stats plain = spp({});
+    CHECK(plain.mean_spp < 20.0);
+    const frame_stats floor20 = spp({parse_define("EMCV_HISTORY_SPVG_N_MIN=20")});
+    CHECK(floor20.mean_spp >= 20.0);
+    const frame_stats cap4 = spp({parse_define("EMCV_HISTORY_N_MAX=4"), parse_define("EMCV_HISTORY_SPVG_N_MIN=2")});
+    CHECK(cap4.max_spp <= 4);
+    CHECK(cap4.max_spp >= 2);
+    CHECK(messenger.error_count() == 0);
+}
