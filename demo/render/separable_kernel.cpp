@@ -14,7 +14,7 @@ double burley_marginal_tail(double t, double d) {
     // P(X > t) = int_0^1 [r(u) > t] acos(t / r(u)) / pi du: cos(theta) > t / r on an arc of 2 acos(t / r) out
     // of 2 pi. Midpoint rule in u, r(u) the exact inverse CDF (docs/frame.md, in double).
     constexpr int steps = 8192;
-    const double pi = 3.14159265358979323846;
+    constexpr double pi = EMCV_PI;
     double sum = 0.0;
     for (int i = 0; i < steps; ++i) {
         const double u = (i + 0.5) / steps;

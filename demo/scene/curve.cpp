@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include <emcv/port/port.h>
+
 namespace emcv::demo {
 namespace {
 
-constexpr double two_pi = 6.283185307179586476925286766559;
+constexpr double two_pi = 2.0 * EMCV_PI;
 
 bool in_burst(const curve& c, int frame) {
     return std::any_of(c.bursts.begin(), c.bursts.end(),

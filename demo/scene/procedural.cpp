@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "procedural.hpp"
 
+#include <emcv/port/port.h>
+
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -8,7 +10,7 @@
 namespace emcv::demo {
 namespace {
 
-constexpr float pi = 3.14159265358979323846f;
+constexpr float pi = float(EMCV_PI);
 
 std::uint32_t index_of(std::size_t i) { return static_cast<std::uint32_t>(i); }
 

@@ -3,6 +3,7 @@
 // texturing as UE) and the specular GGX radiance, kept apart so the specular never scatters (docs/frame.md).
 #version 450 core
 
+#include "emcv/port/port.h"
 #include "render/gbuffer_read.h"
 
 layout(local_size_x = EMCV_RENDER_TILE_SIZE, local_size_y = EMCV_RENDER_TILE_SIZE) in;
@@ -11,7 +12,7 @@ layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_SHADOWS)) uniform sampler2DArrayShado
 layout(rgba16f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_DIFFUSE)) writeonly uniform image2D out_diffuse;
 layout(rgba16f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_SPECULAR)) writeonly uniform image2D out_specular;
 
-const float pi = 3.14159265f;
+const float pi = float(EMCV_PI);
 
 /// Fraction of light reaching `world` (1 outside the shadow map). light.cone.y: normal offset (world
 /// units, about one shadow texel), light.cone.z: depth bias; a 2x2 hardware PCF tap.

@@ -106,7 +106,7 @@ TEST_CASE("the tunables are exactly the #ifndef blocks of the port headers") {
     CHECK(listed == in_headers);
 }
 
-TEST_CASE("--define values are validated and written as GLSL literals of the tunable's type") {
+TEST_CASE("define values are validated and written as GLSL literals of the tunable's type") {
     CHECK(parse_define("EMCV_HISTORY_N_MAX=32") == std::pair<std::string, std::string>{"EMCV_HISTORY_N_MAX", "32"});
     CHECK(parse_define("EMCV_HISTORY_MAX_COUNT=512").second == "512u");
     CHECK(parse_define("EMCV_HISTORY_TARGET=2.5e-5").second == "2.500000000e-05f");

@@ -9,6 +9,7 @@
 #include <emcv/control_variate.hpp>
 #include <emcv/emcm.hpp>
 #include <emcv/moving_stats.hpp>
+#include <emcv/port/port.h>
 #include <emcv/sample_count.hpp>
 #include <glm/gtc/packing.hpp>
 
@@ -133,7 +134,7 @@ std::string method_config::name() const {
 }
 
 float light_at(light_curve c, std::size_t t, std::size_t warmup) {
-    const double pi = 3.141592653589793;
+    constexpr double pi = EMCV_PI;
     switch (c) {
         case light_curve::constant: return 1.0f;
         case light_curve::switch_off: return t < warmup ? 1.0f : 0.25f;

@@ -23,7 +23,7 @@ EMCV_PORT_BEGIN
 EMCV_FN float emcv_burley_spvg_c() { return 2.5715f; }
 
 /// pi in fp32.
-EMCV_FN float emcv_burley_pi() { return 3.14159265f; }
+EMCV_FN float emcv_burley_pi() { return float(EMCV_PI); }
 
 /// r R(r) = (e^{-r/d} + e^{-r/(3d)}) / (8 pi d): the profile times r, finite at r = 0 (what shaders evaluate).
 EMCV_FN float emcv_burley_profile_r(float r, float d) {

@@ -18,6 +18,10 @@
 #ifndef EMCV_PORT_PORT_H
 #define EMCV_PORT_PORT_H
 
+/// pi, written once for the whole project: a double in C++ (use float(EMCV_PI) for fp32), a float literal in
+/// GLSL. Both round to the same fp32 value, 0x40490FDB.
+#define EMCV_PI 3.14159265358979323846
+
 #ifdef __cplusplus
 #include <cmath>
 #include <glm/glm.hpp>
