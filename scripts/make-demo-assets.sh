@@ -12,7 +12,7 @@ if [ ! -f "$src/README.md" ]; then
   exit 2
 fi
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DEMCV_BUILD_ASSET_TOOLS=ON \
-  -DEMCV_BUILD_TESTS=OFF -DEMCV_BUILD_BENCH=OFF -DEMCV_BUILD_TOOLS=OFF >/dev/null
+  -DEMCV_BUILD_TESTS=OFF -DEMCV_BUILD_BENCH=OFF -DEMCV_BUILD_TOOLS=ON >/dev/null
 cmake --build "$build" --target emcv-decimate >/dev/null
 decimate=$build/bin/emcv-decimate
 mkdir -p "$out"

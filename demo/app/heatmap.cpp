@@ -7,11 +7,11 @@
 
 namespace emcv::demo::app {
 
-gl::float_image sample_heatmap(const gl::float_image& counts, float max_count) {
+image::float_image sample_heatmap(const image::float_image& counts, float max_count) {
     // Stops evenly spaced over [0, max_count]: black, blue, green, yellow, red.
     static constexpr std::array<std::array<float, 3>, 5> stops = {
         {{0.0f, 0.0f, 0.0f}, {0.1f, 0.2f, 1.0f}, {0.1f, 0.8f, 0.2f}, {1.0f, 0.9f, 0.1f}, {1.0f, 0.1f, 0.1f}}};
-    gl::float_image out;
+    image::float_image out;
     out.width = counts.width;
     out.height = counts.height;
     out.channels = 4;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "options.hpp"
 
-#include "command_line.hpp"
+#include "cli/command_line.hpp"
 #include "render/tunables.hpp"
 
 #include <sys/stat.h>

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "gl/image_io.hpp"
+#include "image/image_file.hpp"
 
 namespace emcv::demo {
 
@@ -16,24 +16,24 @@ float srgb_to_linear(float encoded) noexcept {
 texture read_texture_file(const std::filesystem::path& path) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw texture_file_error("texture file not found: " + path.string());
-    gl::float_image image;
+    image::float_image file;
     try {
-        image = gl::read_image(path);
+        file = image::read_image(path);
     } catch (const std::exception& e) {
         throw texture_file_error(std::string("cannot read texture: ") + e.what());
     }
-    if (image.width <= 0 || image.height <= 0 || image.channels < 1 || image.channels > 4)
-        throw texture_file_error("unsupported texture layout (" + std::to_string(image.channels) +
+    if (file.width <= 0 || file.height <= 0 || file.channels < 1 || file.channels > 4)
+        throw texture_file_error("unsupported texture layout (" + std::to_string(file.channels) +
                                  " channels): " + path.string());
     texture t;
     t.path = path;
-    t.width = image.width;
-    t.height = image.height;
-    const auto texels = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
-    const auto channels = static_cast<std::size_t>(image.channels);
+    t.width = file.width;
+    t.height = file.height;
+    const auto texels = static_cast<std::size_t>(file.width) * static_cast<std::size_t>(file.height);
+    const auto channels = static_cast<std::size_t>(file.channels);
     t.rgba.resize(texels * 4u);
     for (std::size_t i = 0; i < texels; ++i) {
-        const float* in = image.pixels.data() + i * channels;
+        const float* in = file.pixels.data() + i * channels;
         float* out = t.rgba.data() + i * 4u;
         const bool grey = channels < 3;
         for (std::size_t c = 0; c < 3; ++c) out[c] = srgb_to_linear(in[grey ? 0 : c]);

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // demo/gl foundation pieces that need a context: readback into floats and image output through OpenImageIO
-// (EXR linear and exact, PNG sRGB 8-bit, no half-written file on error), the GPU timer ring, RAII handles.
+// (EXR exact, PNG the same values quantised to 8 bits with no colour transfer, no half-written file on
+// error), the GPU timer ring, RAII handles.
 #include <catch2/catch_test_macros.hpp>
 #include <catch2/matchers/catch_matchers_string.hpp>
 
@@ -17,7 +18,7 @@
 namespace fs = std::filesystem;
 using Catch::Matchers::ContainsSubstring;
 
-TEST_CASE("a texture reads back into floats and round-trips through EXR exactly and PNG in sRGB") {
+TEST_CASE("a texture reads back into floats and round-trips through EXR exactly and PNG quantised, no transfer") {
     auto ctx = emcv::test::context_or_skip();
     emcv::gl::debug_messenger debug;
     constexpr int w = 8, h = 4;
@@ -42,10 +43,24 @@ TEST_CASE("a texture reads back into floats and round-trips through EXR exactly 
     const auto png = emcv::gl::read_image(dir / "roundtrip.png");
     REQUIRE(png.pixels.size() == texels.size());
     for (std::size_t i = 0; i < texels.size(); ++i) {
-        const float want = i % 4 == 3 ? texels[i] : emcv::gl::linear_to_srgb(texels[i]);
-        REQUIRE(std::fabs(png.pixels[i] - want) <= 0.5f / 255.0f + 1e-6f);  // 8-bit quantisation
+        // Colour and alpha alike: the stored byte is the value itself, rounded (a transfer would move it).
+        const float want = static_cast<float>(emcv::image::quantise_unorm8(texels[i])) / 255.0f;
+        REQUIRE(std::fabs(png.pixels[i] - want) <= 1e-6f);
+        REQUIRE(std::fabs(png.pixels[i] - texels[i]) <= 0.5f / 255.0f + 1e-6f);
     }
     for (const auto& e : fs::directory_iterator(dir)) CHECK(e.path().string().find(".tmp") == std::string::npos);
+}
+
+TEST_CASE("PNG quantisation clamps to [0, 1], rounds to the nearest step and stores NaN as 0") {
+    using emcv::image::quantise_unorm8;
+    CHECK(quantise_unorm8(0.0f) == 0);
+    CHECK(quantise_unorm8(1.0f) == 255);
+    CHECK(quantise_unorm8(-0.5f) == 0);
+    CHECK(quantise_unorm8(7.0f) == 255);
+    CHECK(quantise_unorm8(0.5f) == 128);  // 127.5 rounds away from zero
+    CHECK(quantise_unorm8(0.5f / 255.0f - 1e-4f) == 0);
+    CHECK(quantise_unorm8(100.0f / 255.0f) == 100);  // a display byte read back is stored as itself
+    CHECK(quantise_unorm8(std::nanf("")) == 0);
 }
 
 TEST_CASE("image output errors are clear and leave no file") {

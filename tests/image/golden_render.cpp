@@ -4,15 +4,16 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "image/image_file.hpp"
 #include "render/renderer.hpp"
 #include "scene/load.hpp"
 
 namespace emcv::image {
 namespace {
 
-// GL rows are bottom-up, files top-down. `scale` maps the float value onto the file's integer range.
-template <typename T>
-OIIO::ImageBuf to_file_image(const gl::float_image& img, int channels, OIIO::TypeDesc type, float scale) {
+// GL rows are bottom-up, files top-down. `to_file_value` maps a float onto the file's integer range.
+template <typename T, typename Convert>
+OIIO::ImageBuf to_file_image(const gl::float_image& img, int channels, OIIO::TypeDesc type, Convert to_file_value) {
     OIIO::ImageBuf buf(OIIO::ImageSpec(img.width, img.height, channels, type));
     std::vector<T> values(static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height) *
                           static_cast<std::size_t>(channels));
@@ -23,7 +24,7 @@ OIIO::ImageBuf to_file_image(const gl::float_image& img, int channels, OIIO::Typ
                 const std::size_t at = (static_cast<std::size_t>(y) * static_cast<std::size_t>(img.width) +
                                         static_cast<std::size_t>(x)) * static_cast<std::size_t>(img.channels) +
                                        static_cast<std::size_t>(c);
-                values[i++] = static_cast<T>(std::lround(img.pixels[at] * scale));
+                values[i++] = static_cast<T>(to_file_value(img.pixels[at]));
             }
     buf.set_pixels(OIIO::ROI::All(), type, values.data());
     return buf;
@@ -49,11 +50,13 @@ golden_images render_case(const golden_case& c, std::uint32_t seed) {
     for (int frame = 0; frame <= c.last_frame(); ++frame) r.render(frame);
 
     golden_images out;
-    const gl::float_image display = r.display();  // already sRGB-encoded in [0, 1]: quantise, no transfer
-    out.display = to_file_image<unsigned char>(display, 3, OIIO::TypeDesc::UINT8, 255.0f);
+    // The display image is sRGB-encoded already: stored as emcv-demo's PNG frames store it (no transfer).
+    const gl::float_image display = r.display();
+    out.display = to_file_image<unsigned char>(display, 3, OIIO::TypeDesc::UINT8, quantise_unorm8);
     if (adaptive(*m)) {
         const gl::float_image counts = r.sample_counts();
-        out.sample_counts = to_file_image<unsigned short>(counts, 1, OIIO::TypeDesc::UINT16, 1.0f);
+        out.sample_counts = to_file_image<unsigned short>(counts, 1, OIIO::TypeDesc::UINT16,
+                                                          [](float n) { return std::lround(n); });
     }
     return out;
 }

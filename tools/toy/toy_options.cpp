@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "toy_options.hpp"
 
-#include "command_line.hpp"
+#include "cli/command_line.hpp"
 
 #include <cerrno>
 #include <cmath>
