@@ -49,7 +49,7 @@ DEFAULT_TARGET, DEFAULT_NMAX = 1e-4, 64
 # (target variance, N max): the target sweep at SPVG's N max, then N max at SPVG's target.
 ADAPTIVE_KNOBS = [(4e-4, 64), (1e-4, 64), (2.5e-5, 64), (1e-4, 32), (1e-4, 16)]
 SWITCH_FRAME = 30  # light-off: the key light's step (demo/scenes/light-off.json)
-# The paper's teaser (PAPER.md; Xie & Olano 2021, Fig. 1): SSS sampling pass ms and PSNR after the switch.
+# The paper's teaser (Xie & Olano 2021, Fig. 1): SSS sampling pass ms and PSNR after the switch.
 PAPER = {"separable": (4.0, None), "spvg": (12.9, 48.6), "cv": (5.2, 47.5)}
 SCALING_SIZES = [(128, 128), (256, 256), (512, 288), (640, 360), (960, 540), (1280, 720)]
 SCALING_RADII = [0.25, 0.5, 1, 2, 4, 8]

@@ -17,7 +17,7 @@ material skin() {
     material m;
     m.name = "skin";
     m.type = material::kind::sss;
-    m.albedo = glm::vec3(0.91f, 0.34f, 0.27f);              // UE's default surface albedo (sss.md 2.1)
+    m.albedo = glm::vec3(0.91f, 0.34f, 0.27f);              // UE's default surface albedo (docs/frame.md)
     m.mean_free_path_mm = glm::vec3(26.75f, 2.38f, 1.93f) * 0.5f;  // UE's default DMFP colour x distance, halved
     m.specular = 0.3f;
     m.roughness = 0.4f;

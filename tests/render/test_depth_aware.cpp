@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Depth-aware rejection: light does not scatter across a depth step (r_e = sqrt(r^2 + dz^2), sss.md 2.5).
+// Depth-aware rejection: light does not scatter across a depth step (r_e = sqrt(r^2 + dz^2), docs/frame.md).
 #include <catch2/catch_test_macros.hpp>
 
 #include <cmath>

@@ -16,7 +16,7 @@ using namespace emcv::port;
 
 TEST_CASE("pixelsPerMm maps a world offset to the pixels the projection moves it by") {
     // A horizontal offset of delta world units at view depth z moves 0.5 P00 W delta / z pixels
-    // (reference/sss.md 5); checked against glm's projection of both points.
+    // (docs/frame.md); checked against glm's projection of both points.
     const int width = 320;
     const int height = 200;
     const float mm_per_unit = 25.0f;

@@ -16,7 +16,7 @@ namespace {
 
 constexpr float shape_d = 0.7f;
 
-// the CDF and pdf in double, straight from PAPER.md section 4 (the port's fp32 versions are checked against
+// the CDF and pdf in double, straight from the paper (Xie & Olano 2021), section 4 (the port's fp32 versions are checked against
 // these in tests/port)
 double burley_cdf(double r) {
     const double d = shape_d;

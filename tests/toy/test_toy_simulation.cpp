@@ -97,7 +97,7 @@ TEST_CASE("dynamic light: ResHat_EMCM < Res_EMCM < Res_SF+EMA < Res_SF < Res_f",
 }
 
 TEST_CASE("closed-form alpha* matches the paper's digits", "[toy]") {
-    // (1.5 ln 2 - 1) / (1/12) = 0.476649...: the paper's GT value 0.477 to 3 digits (PAPER.md's "0.4767" is
+    // (1.5 ln 2 - 1) / (1/12) = 0.476649...: the paper's GT value 0.477 to 3 digits (the paper's "0.4767" is
     // 0.47665 rounded once more).
     CHECK(std::fabs(analytic_alpha_static() - 0.47665) < 0.5e-5);
     CHECK(std::fabs(analytic_alpha_static() - 0.477) < 0.5e-3);
