@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// shaders/adaptive/history_io.h — the history images of one adaptive method, chosen by the entry file's
-// EMCV_ADAPTIVE_SPVG, EMCV_ADAPTIVE_CV or EMCV_ADAPTIVE_NOTEX, and their load/store in the port's types
+// shaders/adaptive/history_io.h — the history images of one adaptive method, chosen by the define the renderer
+// passes from the method's row: EMCV_ADAPTIVE_SPVG, EMCV_ADAPTIVE_CV or EMCV_ADAPTIVE_NOTEX, and their load/store in the port's types
 // (include/emcv/port/history.h holds the layouts and every formula).
 #ifndef EMCV_ADAPTIVE_HISTORY_IO_H
 #define EMCV_ADAPTIVE_HISTORY_IO_H
@@ -17,7 +17,7 @@ layout(rg32f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_B)) uniform im
 layout(rgba16f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_A)) uniform image2D history_a;
 #define EmcvAdaptiveState EmcvMovingStats
 #else
-#error "define EMCV_ADAPTIVE_SPVG, EMCV_ADAPTIVE_CV or EMCV_ADAPTIVE_NOTEX before including adaptive/history_io.h"
+#error "the renderer defines the method: EMCV_ADAPTIVE_SPVG, EMCV_ADAPTIVE_CV or EMCV_ADAPTIVE_NOTEX (its row of the method table)"
 #endif
 
 layout(r32ui, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_SAMPLES)) uniform uimage2D samples_image;

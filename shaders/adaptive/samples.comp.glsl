@@ -7,10 +7,6 @@
 // frame's history, and writes the N the burley pass takes (EMCV_ADAPTIVE_IMG_SAMPLES).
 #version 450 core
 
-#if !defined(EMCV_ADAPTIVE_SPVG) && !defined(EMCV_ADAPTIVE_CV) && !defined(EMCV_ADAPTIVE_NOTEX)
-#error "the renderer defines the method: EMCV_ADAPTIVE_SPVG, EMCV_ADAPTIVE_CV or EMCV_ADAPTIVE_NOTEX (method table, adaptive_define)"
-#endif
-
 #include "emcv/port/sss.h"
 #include "adaptive/history_io.h"
 #include "render/tiles.h"

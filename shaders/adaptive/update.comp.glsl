@@ -10,10 +10,6 @@
 // A non-finite f or G is refused by the port (state unchanged); a poisoned stored state is reset, never used.
 #version 450 core
 
-#if !defined(EMCV_ADAPTIVE_SPVG) && !defined(EMCV_ADAPTIVE_CV) && !defined(EMCV_ADAPTIVE_NOTEX)
-#error "the renderer defines the method: EMCV_ADAPTIVE_SPVG, EMCV_ADAPTIVE_CV or EMCV_ADAPTIVE_NOTEX (method table, adaptive_define)"
-#endif
-
 #include "adaptive/history_io.h"
 #include "render/tiles.h"
 
