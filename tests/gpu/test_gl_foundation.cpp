@@ -17,7 +17,7 @@
 namespace fs = std::filesystem;
 using Catch::Matchers::ContainsSubstring;
 
-TEST_CASE("a texture reads back into floats and round-trips through EXR exactly and PNG in sRGB") {
+TEST_CASE("a texture reads back into floats and round-trips through EXR exactly and PNG in sRGB", "[image-files]") {
     auto ctx = emcv::test::context_or_skip();
     emcv::gl::debug_messenger debug;
     constexpr int w = 8, h = 4;
@@ -48,7 +48,7 @@ TEST_CASE("a texture reads back into floats and round-trips through EXR exactly 
     for (const auto& e : fs::directory_iterator(dir)) CHECK(e.path().string().find(".tmp") == std::string::npos);
 }
 
-TEST_CASE("image output errors are clear and leave no file") {
+TEST_CASE("image output errors are clear and leave no file", "[image-files]") {
     emcv::gl::float_image img{2, 2, 4, std::vector<float>(16, 0.5f)};
     const fs::path dir = fs::current_path() / "gl_foundation_out";
     fs::create_directories(dir);

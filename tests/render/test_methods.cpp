@@ -31,7 +31,7 @@ std::vector<scene> scenes_under_test() {
 
 }  // namespace
 
-TEST_CASE("every method renders every scene without GL errors or non-finite values") {
+TEST_CASE("every method renders every scene without GL errors or non-finite values", "[image-files]") {
     emcv::gl::context ctx = emcv::test::context_or_skip();
     emcv::gl::debug_messenger messenger;
     std::vector<method> methods = all_methods();
