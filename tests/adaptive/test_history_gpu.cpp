@@ -32,13 +32,13 @@
 #include <emcv/sample_count.hpp>
 
 #include "../gpu/gl_test_support.hpp"
+#include "../support/source_dirs.hpp"
 #include "gl/debug.hpp"
 #include "gl/handles.hpp"
 #include "gl/program.hpp"
 #include "render/adaptive/history.hpp"
 #include "render/gpu_types.hpp"
 
-namespace fs = std::filesystem;
 using emcv::demo::adaptive::history;
 using kind = emcv::demo::method::kind;
 using emcv::demo::adaptive::texel;
@@ -47,7 +47,6 @@ namespace {
 
 constexpr int width = 16, height = 8;  // two 8x8 SSS tiles
 constexpr std::size_t pixels = std::size_t(width) * height;
-const fs::path source_dir = EMCV_SOURCE_DIR;
 
 // Binding slots of shaders/render/bindings.h (the history's passes read them like the renderer's).
 constexpr GLuint frame_slot = 0, materials_slot = 2, stats_slot = 4, tiles_slot = 5;
@@ -55,7 +54,7 @@ constexpr GLuint tex_depth = 10, tex_normal = 11, tex_albedo = 12, tex_material 
 
 emcv::gl::preprocess_options shader_options() {
     emcv::gl::preprocess_options o;
-    o.include_dirs = {source_dir / "shaders", source_dir / "include"};
+    o.include_dirs = emcv_test::shader_include_dirs();
     return o;
 }
 
@@ -84,7 +83,7 @@ struct harness {
     emcv::gl::buffer frame_ubo = emcv::gl::buffer::create(), materials = emcv::gl::buffer::create(),
                      stats = emcv::gl::buffer::create(), tiles = emcv::gl::buffer::create();
     emcv::gl::program probe = emcv::gl::program::compute(
-        source_dir / "shaders/adaptive/tests/gamma_probe.comp.glsl", shader_options());
+        emcv_test::shader_dir() / "adaptive/tests/gamma_probe.comp.glsl", shader_options());
 
     std::vector<float> depths = std::vector<float>(pixels, 2.0f);
     std::vector<std::uint8_t> codes = std::vector<std::uint8_t>(pixels, 1);
@@ -219,7 +218,7 @@ TEST_CASE("the GPU history equals the C++ estimators fed the same per-pixel valu
     harness hx;
     for (const kind k : {kind::spvg, kind::cv, kind::cv_notex}) {
         INFO("method " << (k == kind::spvg ? "spvg" : k == kind::cv ? "cv" : "cv-notex"));
-        history h(emcv::demo::method{k, 0}, width, height, shader_options(), source_dir / "shaders");
+        history h(emcv::demo::method{k, 0}, width, height, shader_options(), emcv_test::shader_dir());
         std::vector<texel> previous(pixels);  // fresh: all zero
         std::vector<float> g, f;
         int compared = 0;
@@ -283,7 +282,7 @@ TEST_CASE("disocclusion and off-screen motion restart the history; the rest keep
     emcv::gl::context ctx = emcv::test::context_or_skip();
     emcv::gl::debug_messenger messenger;
     harness hx;
-    history h(emcv::demo::method{kind::cv, 0}, width, height, shader_options(), source_dir / "shaders");
+    history h(emcv::demo::method{kind::cv, 0}, width, height, shader_options(), emcv_test::shader_dir());
     std::vector<float> g, f;
     for (int frame = 0; frame < 4; ++frame) {
         light_at(frame, g, f);
@@ -328,8 +327,8 @@ TEST_CASE("a poisoned history texel (NaN, Inf, negative variance) is reset and n
     for (const kind k : {kind::spvg, kind::cv}) {
         INFO("method " << (k == kind::spvg ? "spvg" : "cv"));
         harness hx;
-        history clean(emcv::demo::method{k, 0}, width, height, shader_options(), source_dir / "shaders");
-        history poisoned(emcv::demo::method{k, 0}, width, height, shader_options(), source_dir / "shaders");
+        history clean(emcv::demo::method{k, 0}, width, height, shader_options(), emcv_test::shader_dir());
+        history poisoned(emcv::demo::method{k, 0}, width, height, shader_options(), emcv_test::shader_dir());
         std::vector<float> g, f;
         for (int frame = 0; frame < 4; ++frame) {
             light_at(frame, g, f);

@@ -151,7 +151,8 @@ TEST_CASE("an image holding NaN or Inf stops the run: one line, exit 1, nothing 
     CHECK_FALSE(fs::exists(out));
 }
 
-TEST_CASE("the scene list (--list-scenes) names every built-in scene file with a description", "[app][cli]") {
+TEST_CASE("the scene list (--list-scenes) names every built-in scene file with a description",
+          "[app][cli][image-files]") {
     const emcv_test::command_result r = run_demo("--list-scenes");
     INFO(r.err);
     REQUIRE(r.exit_code == 0);
@@ -186,7 +187,7 @@ TEST_CASE("the pass list (--print-passes) is printed per method without a GL con
     CHECK(r.out.find("method reference") == std::string::npos);
 }
 
-TEST_CASE("a small headless run writes frames and complete metrics files", "[app][cli][gl]") {
+TEST_CASE("a small headless run writes frames and complete metrics files", "[app][cli][gl][image-files]") {
     const fs::path out = scratch_dir("run") / "out";
     const emcv_test::command_result r = run_demo("--scene '" + data_dir +
                                                  "/tiny.json' --size 64x64 --frames 3 --method diffuse,burley-4 "
@@ -334,7 +335,8 @@ colour_counts distinct_colours(const fs::path& png) {
 
 }  // namespace
 
-TEST_CASE("adaptive methods write N heatmaps and cv alpha heatmaps and a static scene's N is not uniform", "[app][cli][gl]") {
+TEST_CASE("adaptive methods write N heatmaps and cv alpha heatmaps and a static scene's N is not uniform",
+          "[app][cli][gl][image-files]") {
     const fs::path out = scratch_dir("heatmaps") / "out";
     const emcv_test::command_result r = run_demo("--scene '" + data_dir +
                                                  "/tiny.json' --size 48x48 --frames 4 --method diffuse,spvg,cv "

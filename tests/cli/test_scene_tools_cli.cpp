@@ -12,6 +12,9 @@
 namespace fs = std::filesystem;
 using emcv_cli_test::quoted;
 
+// Both tools come with the demo's scene library: without it neither is built, and an unused helper would
+// be a warning (an error here).
+#if defined(EMCV_SCENE_INFO) || defined(EMCV_LIGHT_CURVES)
 namespace {
 
 /// The scene problems every scene-reading tool must name, with the file first (load.hpp's scene_error).
@@ -26,6 +29,7 @@ std::vector<emcv_cli_test::bad_usage> bad_scenes(const fs::path& dir) {
 }
 
 }  // namespace
+#endif
 
 #ifdef EMCV_SCENE_INFO
 TEST_CASE("emcv-scene-info: bad usage and bad scenes exit 2 with one line", "[cli][scene-info]") {

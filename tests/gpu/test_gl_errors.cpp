@@ -12,6 +12,7 @@
 #include "gl/program.hpp"
 #include "gl_test_support.hpp"
 #include "../support/run_command.hpp"
+#include "../support/source_dirs.hpp"
 
 using Catch::Matchers::ContainsSubstring;
 
@@ -21,7 +22,7 @@ emcv_test::command_result run(const std::string& command) { return emcv_test::ru
 
 emcv::gl::preprocess_options test_options() {
     emcv::gl::preprocess_options o;
-    o.include_dirs = {std::string(EMCV_SOURCE_DIR) + "/shaders", std::string(EMCV_SOURCE_DIR) + "/include"};
+    o.include_dirs = emcv_test::shader_include_dirs();
     return o;
 }
 
@@ -117,8 +118,7 @@ TEST_CASE("a syntax error in an included file: Mesa's log names that file and li
 
 TEST_CASE("a missing shader file is a clear error before any GL call") {
     // no context needed: the preprocessor fails before the first GL call
-    CHECK_THROWS_WITH(emcv::gl::program::compute(std::string(EMCV_SOURCE_DIR) + "/shaders/missing.comp.glsl",
-                                                 test_options()),
+    CHECK_THROWS_WITH(emcv::gl::program::compute(emcv_test::shader_dir() / "missing.comp.glsl", test_options()),
                       ContainsSubstring("shader file not found") && ContainsSubstring("missing.comp.glsl"));
 }
 

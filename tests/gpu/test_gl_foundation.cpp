@@ -18,7 +18,7 @@
 namespace fs = std::filesystem;
 using Catch::Matchers::ContainsSubstring;
 
-TEST_CASE("a texture reads back into floats and round-trips through EXR exactly and PNG quantised, no transfer") {
+TEST_CASE("a texture reads back into floats and round-trips through EXR exactly and PNG quantised, no transfer", "[image-files]") {
     auto ctx = emcv::test::context_or_skip();
     emcv::gl::debug_messenger debug;
     constexpr int w = 8, h = 4;
@@ -63,7 +63,7 @@ TEST_CASE("PNG quantisation clamps to [0, 1], rounds to the nearest step and sto
     CHECK(quantise_unorm8(std::nanf("")) == 0);
 }
 
-TEST_CASE("image output errors are clear and leave no file") {
+TEST_CASE("image output errors are clear and leave no file", "[image-files]") {
     emcv::gl::float_image img{2, 2, 4, std::vector<float>(16, 0.5f)};
     const fs::path dir = fs::current_path() / "gl_foundation_out";
     fs::create_directories(dir);

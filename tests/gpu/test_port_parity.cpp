@@ -31,6 +31,7 @@
 #include "gl/handles.hpp"
 #include "gl/program.hpp"
 #include "gl_test_support.hpp"
+#include "../support/source_dirs.hpp"
 
 namespace port = emcv::port;
 
@@ -119,10 +120,9 @@ std::vector<glm::vec4> run_port_cpu() {
 /// (c): the same in a compute shader.
 std::vector<glm::vec4> run_port_gpu() {
     emcv::gl::preprocess_options options;
-    options.include_dirs = {std::string(EMCV_SOURCE_DIR) + "/shaders", std::string(EMCV_SOURCE_DIR) + "/include"};
+    options.include_dirs = emcv_test::shader_include_dirs();
     emcv::gl::debug_group group("port parity");
-    const auto prog = emcv::gl::program::compute(std::string(EMCV_SOURCE_DIR) + "/shaders/tests/port_parity.comp.glsl",
-                                                 options);
+    const auto prog = emcv::gl::program::compute(emcv_test::shader_dir() / "tests/port_parity.comp.glsl", options);
     const params_std140 params{{kPixels, kUpdates, kSeed, 0u},
                                {kEtaCov, kEtaRes, kTarget, kBurleyD},
                                {kNMin, kNMax, 0, 0}};

@@ -4,14 +4,13 @@
 #include <catch2/catch_test_macros.hpp>
 
 #include <cmath>
-#include <cstdlib>
-#include <string>
 #include <cstdint>
 #include <vector>
 
 #include <emcv/port/burley.h>
 
 #include "../gpu/gl_test_support.hpp"
+#include "../support/source_dirs.hpp"
 #include "gl/debug.hpp"
 #include "gl/program.hpp"
 #include "../../shaders/render/bindings.h"
@@ -26,18 +25,11 @@ struct radii_params {
     float shape[4];
 };
 
-/// $EMCV_SHADER_DIR / $EMCV_INCLUDE_DIR when set (as the renderer reads them: mutation checks on a copy),
-/// else the source tree.
-std::string dir_or_env(const char* environment, const std::string& fallback) {
-    const char* value = std::getenv(environment);
-    return value != nullptr && *value != '\0' ? std::string(value) : fallback;
-}
-
 std::vector<float> gpu_radii(float d, bool approximate, std::uint32_t seed) {
-    const std::string shader_dir = dir_or_env("EMCV_SHADER_DIR", EMCV_SOURCE_DIR "/shaders");
     emcv::gl::preprocess_options pre;
-    pre.include_dirs = {shader_dir, dir_or_env("EMCV_INCLUDE_DIR", EMCV_SOURCE_DIR "/include")};
-    const emcv::gl::program program = emcv::gl::program::compute(shader_dir + "/tests/burley_radii.comp.glsl", pre);
+    pre.include_dirs = emcv_test::shader_include_dirs();
+    const emcv::gl::program program =
+        emcv::gl::program::compute(emcv_test::shader_dir() / "tests/burley_radii.comp.glsl", pre);
     const radii_params params{{sample_count, seed, 3u, approximate ? 1u : 0u}, {d, 0.0f, 0.0f, 0.0f}};
     emcv::gl::buffer ubo = emcv::gl::buffer::create();
     glNamedBufferStorage(ubo.id(), sizeof params, &params, 0);

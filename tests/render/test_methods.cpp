@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "../gpu/gl_test_support.hpp"
+#include "../support/source_dirs.hpp"
 #include "gl/debug.hpp"
 #include "render/renderer.hpp"
 #include "render_test_support.hpp"
@@ -30,7 +31,7 @@ std::vector<scene> scenes_under_test() {
 
 }  // namespace
 
-TEST_CASE("every method renders every scene without GL errors or non-finite values") {
+TEST_CASE("every method renders every scene without GL errors or non-finite values", "[image-files]") {
     emcv::gl::context ctx = emcv::test::context_or_skip();
     emcv::gl::debug_messenger messenger;
     std::vector<method> methods = all_methods();
@@ -109,10 +110,7 @@ TEST_CASE("SSS tiles dispatched in many rows render the same image as in one row
     namespace fs = std::filesystem;
     const fs::path copy = fs::temp_directory_path() / "emcv-test-render-tile-rows";
     fs::remove_all(copy);
-    const char* shader_dir = std::getenv("EMCV_SHADER_DIR");  // as the renderer reads it (mutation checks)
-    const fs::path source = shader_dir != nullptr && *shader_dir != '\0' ? fs::path(shader_dir)
-                                                                          : fs::path(EMCV_SOURCE_DIR) / "shaders";
-    fs::copy(source, copy, fs::copy_options::recursive);
+    fs::copy(emcv_test::shader_dir(), copy, fs::copy_options::recursive);
     const fs::path bindings = copy / "render" / "bindings.h";
     std::string text;
     {

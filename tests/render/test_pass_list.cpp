@@ -72,7 +72,7 @@ TEST_CASE("a light whose curve is 0 at a frame records no shadow pass that frame
     CHECK(has_pass(pass_list(burst, burley16, 6, 64, 48), "shadow:spot"));
 }
 
-TEST_CASE("pass list of each built-in scene") {
+TEST_CASE("pass list of each built-in scene", "[image-files]") {
     const std::vector<std::string> names = builtin_scene_names();
     REQUIRE(std::find(names.begin(), names.end(), "no-sss") != names.end());
     for (const std::string& name : names) {
@@ -92,7 +92,7 @@ TEST_CASE("pass list of each built-in scene") {
     }
 }
 
-TEST_CASE("the renderer records exactly the pass list") {
+TEST_CASE("the renderer records exactly the pass list", "[image-files]") {
     emcv::gl::context ctx = emcv::test::context_or_skip();
     emcv::gl::debug_messenger messenger;
     std::vector<scene> scenes{emcv::test::sphere_on_floor(), emcv::test::no_sss(), emcv::test::sss_outside_view()};

@@ -36,7 +36,7 @@ TEST_CASE("the built-in scene names are the eight scenes of issue 8, sorted, wit
           std::vector<std::string>{"club", "far", "flicker", "light-off", "mixed", "moving", "no-sss", "static"});
 }
 
-TEST_CASE("every built-in scene loads, declares the schema and describes itself") {
+TEST_CASE("every built-in scene loads, declares the schema and describes itself", "[image-files]") {
     for (const auto& name : builtin_scene_names()) {
         INFO(name);
         const scene s = load_scene_argument(name);
@@ -50,7 +50,7 @@ TEST_CASE("every built-in scene loads, declares the schema and describes itself"
     }
 }
 
-TEST_CASE("each built-in scene has the property its name promises") {
+TEST_CASE("each built-in scene has the property its name promises", "[image-files]") {
     const scene light_off = load_scene_argument("light-off");
     // The key light switches off mid-sequence; another light stays on throughout.
     const auto key = std::find_if(light_off.lights.begin(), light_off.lights.end(), [&](const light& l) {
@@ -85,7 +85,8 @@ TEST_CASE("each built-in scene has the property its name promises") {
     CHECK(shadow_casters(light_off) == 1u);
 }
 
-TEST_CASE("scattering spans 1.5 to 3 pixels of shape distance at 256 x 256, except in far where it is under a pixel") {
+TEST_CASE("scattering spans 1.5 to 3 pixels of shape distance at 256 x 256, except in far where it is under a pixel",
+          "[image-files]") {
     // The 99.7% radius of the widest channel, about 16.6 d with d = l / s(A) mm, projected at the object's
     // centre. The demo's scenes are built so that scattering matters at their own resolution: d between 1.5
     // and 3 pixels (a 99.7% radius of 24.9 to 49.7 px, docs/scenes.md), at the first and the last frame.

@@ -146,7 +146,7 @@ TEST_CASE("the sRGB decoding is IEC 61966-2-1") {
     CHECK(std::fabs(srgb_to_linear(0.040451f) - srgb_to_linear(0.040449f)) < 1e-6f);
 }
 
-TEST_CASE("textures load linearised from sRGB, opaque where the file has no alpha") {
+TEST_CASE("textures load linearised from sRGB, opaque where the file has no alpha", "[image-files]") {
     const texture t = read_texture_file(source_dir() / "demo/assets/spot_texture.png");
     REQUIRE(t.width == 1024);
     REQUIRE(t.height == 1024);
@@ -168,7 +168,7 @@ TEST_CASE("textures load linearised from sRGB, opaque where the file has no alph
     CHECK(two.rgba[5] == 0.0f);
 }
 
-TEST_CASE("texture rows are flipped to bottom first") {
+TEST_CASE("texture rows are flipped to bottom first", "[image-files]") {
     const temp_folder dir;
     // 1 x 2 image: top pixel white, bottom pixel black.
     const auto file = dir.write("column.ppm", std::string("P6\n1 2\n255\n") + std::string("\xff\xff\xff\x00\x00\x00", 6));

@@ -8,14 +8,17 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "gl/shader_preprocessor.hpp"
 #include "render/method.hpp"
 #include "../support/run_command.hpp"
+#include "../support/source_dirs.hpp"
 
 namespace fs = std::filesystem;
 using Catch::Matchers::ContainsSubstring;
@@ -29,7 +32,7 @@ const fs::path output_dir = EMCV_TEST_OUTPUT_DIR;
 
 preprocess_options project_options() {
     preprocess_options o;
-    o.include_dirs = {source_dir / "shaders", source_dir / "include"};
+    o.include_dirs = emcv_test::shader_include_dirs();
     return o;
 }
 
@@ -40,12 +43,32 @@ std::string stage_of(const fs::path& p) {
     return p.stem().extension().string().substr(1);
 }
 
-fs::path write_preprocessed(const fs::path& shader, const std::string& text) {
-    const fs::path out = output_dir / fs::relative(shader, source_dir);
+/// Writes the flattened text to `relative` under the output folder.
+fs::path write_preprocessed(const fs::path& relative, const std::string& text) {
+    const fs::path out = output_dir / relative;
     fs::create_directories(out.parent_path());
     std::ofstream(out, std::ios::binary) << text;
     return out;
 }
+
+/// Sets an environment variable for one scope and puts back what was there.
+class scoped_env {
+public:
+    scoped_env(const char* name, const std::string& value) : name_(name) {
+        if (const char* old = std::getenv(name)) old_ = old;
+        ::setenv(name, value.c_str(), 1);
+    }
+    ~scoped_env() {
+        if (old_) ::setenv(name_, old_->c_str(), 1);
+        else ::unsetenv(name_);
+    }
+    scoped_env(const scoped_env&) = delete;
+    scoped_env& operator=(const scoped_env&) = delete;
+
+private:
+    const char* name_;
+    std::optional<std::string> old_;
+};
 
 }  // namespace
 
@@ -61,7 +84,8 @@ std::vector<std::string> method_defines(const fs::path& shader) {
 
 TEST_CASE("every shader preprocesses and validates with glslangValidator for OpenGL and Vulkan") {
     int shaders = 0;
-    for (const auto& entry : fs::recursive_directory_iterator(source_dir / "shaders")) {
+    const fs::path root = emcv_test::shader_dir();
+    for (const auto& entry : fs::recursive_directory_iterator(root)) {
         const fs::path p = entry.path();
         if (!entry.is_regular_file() || p.extension() != ".glsl" || p.stem().extension().empty()) continue;
         for (const std::string& define : method_defines(p)) {
@@ -70,7 +94,7 @@ TEST_CASE("every shader preprocesses and validates with glslangValidator for Ope
             preprocess_options options = project_options();
             if (!define.empty()) options.defines = {{define, "1"}};
             const auto src = preprocess_file(p, options);
-            const fs::path flat = write_preprocessed(p, src.text);
+            const fs::path flat = write_preprocessed(fs::path("shaders") / fs::relative(p, root), src.text);
             const std::string stage = stage_of(p);
             const std::string tool = std::string(EMCV_GLSLANG_VALIDATOR) + " -S " + stage + " ";
             const fs::path spv = flat.string() + ".spv";
@@ -87,7 +111,7 @@ TEST_CASE("every shader preprocesses and validates with glslangValidator for Ope
 
 TEST_CASE("every port header compiles alone as GLSL 4.50 (OpenGL and Vulkan SPIR-V)") {
     int headers = 0;
-    for (const auto& entry : fs::directory_iterator(source_dir / "include/emcv/port")) {
+    for (const auto& entry : fs::directory_iterator(emcv_test::include_dir() / "emcv/port")) {
         const fs::path h = entry.path();
         if (h.extension() != ".h") continue;
         ++headers;
@@ -114,23 +138,24 @@ TEST_CASE("every port header compiles alone as GLSL 4.50 (OpenGL and Vulkan SPIR
 TEST_CASE("#version and #extension are hoisted, defines injected, #pragma once honoured") {
     preprocess_options o = project_options();
     o.defines = {{"INJECTED", "3"}};
-    const auto src = preprocess_file(source_dir / "tests/shaders/data/hoist.comp.glsl", o);
+    const fs::path shader = source_dir / "tests/shaders/data/hoist.comp.glsl";
+    const auto src = preprocess_file(shader, o);
     CHECK(src.text.rfind("#version 450 core\n#extension GL_ARB_shader_ballot : enable\n#define INJECTED 3\n", 0) == 0);
     // once.h appears once in the file table and its body once in the text.
     CHECK(src.files.size() == 2);
     const auto first = src.text.find("float once_value()");
     REQUIRE(first != std::string::npos);
     CHECK(src.text.find("float once_value()", first + 1) == std::string::npos);
-    const fs::path flat = write_preprocessed(source_dir / "tests/shaders/data/hoist.comp.glsl", src.text);
+    const fs::path flat = write_preprocessed(fs::relative(shader, source_dir), src.text);
     const emcv_test::command_result r = run(std::string(EMCV_GLSLANG_VALIDATOR) + " -S comp " + flat.string());
     INFO(r.output());
     CHECK(r.exit_code == 0);
 }
 
 TEST_CASE("a missing shader file is a clear error") {
-    REQUIRE_THROWS_AS(preprocess_file(source_dir / "shaders/no_such_shader.comp.glsl", project_options()),
+    REQUIRE_THROWS_AS(preprocess_file(emcv_test::shader_dir() / "no_such_shader.comp.glsl", project_options()),
                       emcv::gl::shader_error);
-    REQUIRE_THROWS_WITH(preprocess_file(source_dir / "shaders/no_such_shader.comp.glsl", project_options()),
+    REQUIRE_THROWS_WITH(preprocess_file(emcv_test::shader_dir() / "no_such_shader.comp.glsl", project_options()),
                         ContainsSubstring("shader file not found") && ContainsSubstring("no_such_shader.comp.glsl"));
 }
 
@@ -148,7 +173,7 @@ TEST_CASE("an include cycle is an error, not a stack overflow") {
 TEST_CASE("glslang's error in an included file is reported at that file and line after rewriting") {
     const fs::path shader = source_dir / "tests/shaders/data/broken_main.comp.glsl";
     const auto src = preprocess_file(shader, project_options());
-    const fs::path flat = write_preprocessed(shader, src.text);
+    const fs::path flat = write_preprocessed(fs::relative(shader, source_dir), src.text);
     const emcv_test::command_result r = run(std::string(EMCV_GLSLANG_VALIDATOR) + " -S comp " + flat.string());
     CHECK(r.exit_code != 0);
     const std::string log = src.rewrite_log(r.output());
@@ -169,4 +194,34 @@ TEST_CASE("rewrite_log maps Mesa and glslang locations through the file table") 
     CHECK(src.rewrite_log("ERROR: 1 compilation errors.  No code generated.") ==
           "ERROR: 1 compilation errors.  No code generated.");
     CHECK(src.rewrite_log("9:4(1): error") == "9:4(1): error");
+}
+
+TEST_CASE("EMCV_SHADER_DIR and EMCV_INCLUDE_DIR point the tests at another copy, as they point the renderer") {
+    // A copy holding a shader and a port header that the source tree lacks: preprocessing it through the tests'
+    // folders succeeds only when both variables are honoured.
+    const fs::path copy = output_dir / "environment_copy";
+    fs::remove_all(copy);
+    fs::create_directories(copy / "shaders");
+    fs::create_directories(copy / "include/emcv/port");
+    std::ofstream(copy / "shaders/probe.comp.glsl")
+        << "#version 450 core\n#include \"emcv/port/probe_only_in_copy.h\"\nlayout(local_size_x = 1) in;\n"
+           "void main() {}\n";
+    std::ofstream(copy / "include/emcv/port/probe_only_in_copy.h") << "float probe_marker() { return 1.0; }\n";
+    {
+        const scoped_env shaders("EMCV_SHADER_DIR", (copy / "shaders").string());
+        const scoped_env includes("EMCV_INCLUDE_DIR", (copy / "include").string());
+        CHECK(emcv_test::shader_dir() == copy / "shaders");
+        CHECK(emcv_test::include_dir() == copy / "include");
+        const auto src = preprocess_file(emcv_test::shader_dir() / "probe.comp.glsl", project_options());
+        CHECK(src.text.find("float probe_marker()") != std::string::npos);
+    }
+    {
+        // set but empty reads as unset, as in the renderer
+        const scoped_env shaders("EMCV_SHADER_DIR", "");
+        const scoped_env includes("EMCV_INCLUDE_DIR", "");
+        CHECK(emcv_test::shader_dir() == source_dir / "shaders");
+        CHECK(emcv_test::include_dir() == source_dir / "include");
+        CHECK_THROWS_AS(preprocess_file(copy / "shaders/probe.comp.glsl", project_options()), emcv::gl::shader_error);
+    }
+    fs::remove_all(copy);
 }
