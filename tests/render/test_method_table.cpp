@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -87,18 +86,21 @@ TEST_CASE("the reference's planner drops its SSS passes while its inputs hold, a
 }
 
 TEST_CASE("the tunables are exactly the #ifndef blocks of the port headers") {
-    // Every `#ifndef NAME` followed by `#define NAME` that is not an include guard (NAME ends in _H).
+    // Every `#ifndef NAME` line followed by `#define NAME value` that is not an include guard (NAME ends in _H).
     std::set<std::string> in_headers;
-    const std::regex block(R"(#ifndef (EMCV_\w+)\s*\n#define \1[ \t]+\S)");
     for (const auto& e : std::filesystem::directory_iterator(std::string(EMCV_SOURCE_DIR) + "/include/emcv/port")) {
         if (e.path().filename() == "port.h") continue;  // the dialect's qualifier macros, not tunables
         std::ifstream in(e.path());
-        std::stringstream text;
-        text << in.rdbuf();
-        const std::string s = text.str();
-        for (auto it = std::sregex_iterator(s.begin(), s.end(), block); it != std::sregex_iterator(); ++it) {
-            const std::string name = (*it)[1];
-            if (name.size() < 2 || name.substr(name.size() - 2) != "_H") in_headers.insert(name);
+        std::string previous, line;
+        while (std::getline(in, line)) {
+            const std::string guard = "#ifndef EMCV_";
+            if (previous.rfind(guard, 0) == 0) {
+                const std::string name = previous.substr(8);
+                const bool defines_value = line.rfind("#define " + name + " ", 0) == 0 &&
+                                           line.size() > 9 + name.size();
+                if (defines_value && name.substr(name.size() - 2) != "_H") in_headers.insert(name);
+            }
+            previous = line;
         }
     }
     std::set<std::string> listed;
