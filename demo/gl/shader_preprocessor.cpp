@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "shader_preprocessor.hpp"
 
+#include <cstdlib>
+
 #include <fstream>
 #include <cctype>
 #include <set>
@@ -188,6 +190,13 @@ std::string preprocessed_source::rewrite_log(const std::string& log) const {
         ++i;
     }
     return out;
+}
+
+std::filesystem::path shader_source_dir(const std::filesystem::path& option, const char* environment,
+                                        const std::filesystem::path& compiled) {
+    if (!option.empty()) return option;
+    if (const char* value = std::getenv(environment); value != nullptr && *value != '\0') return value;
+    return compiled;
 }
 
 }  // namespace emcv::gl

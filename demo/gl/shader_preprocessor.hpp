@@ -35,6 +35,12 @@ struct preprocessed_source {
     std::string rewrite_log(const std::string& log) const;
 };
 
+/// A folder shaders or port headers are read from at run time: `option` when not empty, else $`environment`
+/// when set and non-empty, else `compiled` (the source tree). The renderer and the GPU tests resolve their
+/// folders here, so a mutated copy named by EMCV_SHADER_DIR / EMCV_INCLUDE_DIR is what both compile.
+std::filesystem::path shader_source_dir(const std::filesystem::path& option, const char* environment,
+                                        const std::filesystem::path& compiled);
+
 /// Preprocesses the file at `path`. Throws shader_error for a missing file, an unresolved include or an
 /// include cycle. `#pragma once` and #ifndef include guards are both honoured (guards by the GLSL compiler).
 preprocessed_source preprocess_file(const std::filesystem::path& path, const preprocess_options& options);

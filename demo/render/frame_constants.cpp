@@ -30,7 +30,7 @@ void frame_constants::upload(const gpu_resources& r, const scene& s, const metho
     // The burley pass takes the method's fixed count, or N per pixel from the adaptive-samples pass.
     const method_row& row = row_of(m);
     const int fixed = row.passes == sss_passes::burley ? m.samples : 0;
-    frame_.sss = glm::ivec4(fixed, row.passes == sss_passes::adaptive ? 1 : 0, static_cast<int>(s.materials.size()), 0);
+    frame_.sss = glm::ivec4(fixed, is_adaptive(m) ? 1 : 0, static_cast<int>(s.materials.size()), 0);
     glNamedBufferSubData(r.frame_ubo.id(), 0, sizeof frame_, &frame_);
 
     for (std::size_t i = 0; i < s.lights.size(); ++i) {

@@ -3,13 +3,15 @@
 #pragma once
 
 #include <cstddef>
-#include <string>
+#include <string_view>
 #include <vector>
 
 namespace emcv::demo {
 
 struct pass_time {
-    std::string name;
+    /// The pass's name as in pass_list; points into the renderer's own names (valid while the renderer lives),
+    /// so a frame's statistics cost no allocation.
+    std::string_view name;
     double ms = 0.0;
 };
 

@@ -29,16 +29,6 @@ std::string pass_name(const scene& s, const planned_pass& p) {
     return std::string(pass_base_name(p.id));
 }
 
-bool sss_possibly_visible(const scene& s, int frame, int width, int height) {
-    if (!s.has_sss_material()) return false;
-    const view_matrices v = camera_matrices(s.view, frame, width, height);
-    for (const object& o : s.objects) {
-        if (!s.materials.at(static_cast<std::size_t>(o.material)).scatters()) continue;
-        if (sphere_in_frustum(v.view_proj, object_bounds(s, o))) return true;
-    }
-    return false;
-}
-
 bool light_has_shadow_pass(const light& l) { return l.casts_shadow && l.type != light::kind::point; }
 
 bool light_shines(const light& l, int frame) { return l.intensity.at(frame) > 0.0f; }
@@ -61,7 +51,8 @@ frame_planner::frame_planner(const scene& s, const method& m, int width, int hei
 
 const std::vector<planned_pass>& frame_planner::plan(int frame, const std::vector<float>& light_scale) {
     const scene& s = *s_;
-    const view_matrices v = camera_matrices(s.view, frame, width_, height_);
+    view_ = camera_matrices(s.view, frame, width_, height_);
+    const view_matrices& v = view_;
     const bool visible = m_.scatters() && std::any_of(sss_bounds_.begin(), sss_bounds_.end(), [&](const bounding_sphere& b) {
                              return sphere_in_frustum(v.view_proj, b);
                          });

@@ -53,10 +53,6 @@ struct planned_pass {
 /// "shadow:<light name>" for a shadow pass, the base name otherwise.
 std::string pass_name(const scene& s, const planned_pass& p);
 
-/// True when some object with a scattering material intersects the view frustum at this frame (bounding
-/// sphere of its transformed mesh against the six planes).
-bool sss_possibly_visible(const scene& s, int frame, int width, int height);
-
 /// The lights with a shadow-map layer, in layer order.
 std::vector<std::size_t> shadow_casters(const scene& s);
 
@@ -74,6 +70,10 @@ public:
     bool reuses_result() const { return reused_; }
     /// Whether the last planned frame records SSS passes.
     bool scatters() const { return scatters_; }
+    /// Whether the last planned frame shows scattered light (its SSS passes run, or the reference's held result).
+    bool shows_sss() const { return scatters_ || reused_; }
+    /// The camera of the last planned frame (the renderer uploads it).
+    const view_matrices& view() const { return view_; }
     /// Forget the held result (method switch).
     void reset() { held_ = false; }
 
@@ -85,6 +85,7 @@ private:
     std::vector<std::size_t> casters_;
     std::vector<planned_pass> passes_;
     std::vector<float> inputs_, held_inputs_;
+    view_matrices view_;
     bool held_ = false, reused_ = false, scatters_ = false;
 };
 

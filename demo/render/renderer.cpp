@@ -69,14 +69,12 @@ struct renderer::impl {
             slots.push_back({std::string(pass_base_name(static_cast<pass_id>(id))), gl::gpu_timer(), 0.0, {}});
         for (std::size_t layer = 0; layer < res.shadow_lights.size(); ++layer)
             slots.push_back({pass_name(s, {pass_id::shadow, res.shadow_lights[layer], layer}), gl::gpu_timer(), 0.0, {}});
-        // Names reserved once, so render() allocates nothing.
-        stats.passes.resize(slots.size());
-        for (std::size_t i = 0; i < slots.size(); ++i) stats.passes[i].name.reserve(slots[i].name.size() + 1);
+        stats.passes.reserve(slots.size());  // a frame records at most one pass per slot: no allocation later
     }
 
     void make_history() {
         history.reset();
-        if (row_of(m).history != history_layout::none)
+        if (is_adaptive(m))
             history.emplace(m, o.width, o.height, shaders.preprocess, shaders.shader_dir);
     }
 
@@ -105,17 +103,6 @@ struct renderer::impl {
             t.timer.end();
         }
         glPopDebugGroup();
-    }
-
-    void bind_frame_buffers() {
-        glBindBufferBase(GL_UNIFORM_BUFFER, EMCV_RENDER_FRAME, res.frame_ubo.id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMCV_RENDER_LIGHTS, res.lights_ssbo.id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMCV_RENDER_MATERIALS, res.materials_ssbo.id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMCV_RENDER_OBJECTS, res.objects_ssbo.id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMCV_RENDER_STATS, res.stats_ssbo.id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMCV_RENDER_TILES, res.tiles_ssbo.id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMCV_RENDER_KERNELS, res.kernels_ssbo.id());
-        glBindVertexArray(res.vao.id());
     }
 
     /// Samples per SSS pixel from the GPU's reduction (16 bytes read back), or the held reference's.
@@ -149,7 +136,7 @@ struct renderer::impl {
         }
     }
 
-    /// Times of the recorded passes, in recording order (stats.passes keeps its reserved capacity).
+    /// Times of the recorded passes, in recording order (within the capacity reserved in the constructor).
     void collect_times(const std::vector<planned_pass>& plan) {
         if (o.timing_mode == timing::asynchronous) {
             for (timed_slot& t : slots)
@@ -168,14 +155,13 @@ struct renderer::impl {
     }
 
     const frame_stats& render(int frame) {
-        const view_matrices v = camera_matrices(s.view, frame, o.width, o.height);
         const std::vector<planned_pass>& plan = planner.plan(frame, light_scale);
-        const bool visible = planner.scatters() || planner.reuses_result();
+        const view_matrices& v = planner.view();
+        const bool visible = planner.shows_sss();
         constants.upload(res, s, m, o, frame, v, visible, light_scale);
-        bind_frame_buffers();
-
         const frame_context context{res, programs, s, m, history ? &*history : nullptr, frame,
                                     div_up(o.width, EMCV_RENDER_TILE_SIZE), div_up(o.height, EMCV_RENDER_TILE_SIZE)};
+        passes::bind_frame_resources(context);
         for (const planned_pass& p : plan) {
             timed_slot& t = slots[slot_of(p)];
             begin_pass(t);

@@ -3,7 +3,6 @@
 #include "resources.hpp"
 
 #include <algorithm>
-#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -23,12 +22,6 @@ namespace emcv::demo {
 namespace fs = std::filesystem;
 
 namespace {
-
-fs::path resolve_dir(const fs::path& option, const char* environment, const char* compiled) {
-    if (!option.empty()) return option;
-    if (const char* value = std::getenv(environment); value != nullptr && *value != '\0') return value;
-    return compiled;
-}
 
 GLuint div_up(int n, int d) { return static_cast<GLuint>((n + d - 1) / d); }
 
@@ -205,8 +198,8 @@ void make_pass_constants(gpu_resources& r) {
 
 shader_setup make_shader_setup(const render_options& o) {
     shader_setup out;
-    out.shader_dir = resolve_dir(o.shader_dir, "EMCV_SHADER_DIR", EMCV_SHADER_DIR);
-    const fs::path include_dir = resolve_dir(o.include_dir, "EMCV_INCLUDE_DIR", EMCV_INCLUDE_DIR);
+    out.shader_dir = gl::shader_source_dir(o.shader_dir, "EMCV_SHADER_DIR", EMCV_SHADER_DIR);
+    const fs::path include_dir = gl::shader_source_dir(o.include_dir, "EMCV_INCLUDE_DIR", EMCV_INCLUDE_DIR);
     out.preprocess.include_dirs = {out.shader_dir, include_dir};
     out.preprocess.defines = o.defines;
     return out;

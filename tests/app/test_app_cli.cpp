@@ -62,7 +62,8 @@ TEST_CASE("the help text (--help) lists every flag and exits 0", "[app][cli]") {
     const emcv_test::command_result r = run_demo("--help");
     REQUIRE(r.exit_code == 0);
     for (const char* flag : {"--scene", "--method", "--frames", "--size", "--out", "--seed", "--exr", "--window",
-                             "--list-scenes", "--print-passes", "--approximate-cdf", "--help"})
+                             "--list-scenes", "--print-passes", "--approximate-cdf", "--define", "--list-methods",
+                             "--help"})
         CHECK(r.out.find(flag) != std::string::npos);
 }
 
@@ -85,6 +86,11 @@ TEST_CASE("unknown and malformed flags: one line, exit 2, nothing written", "[ap
     check_rejected(scene + "--method separable-12", 2, "'separable-12'", out);
     check_rejected(scene + "--method diffuse,,reference", 2, "--method", out);
     check_rejected(scene + "--exr=yes", 2, "--exr: takes no value", out);
+    check_rejected(scene + "--define EMCV_BOGUS=1", 2, "--define: unknown tunable 'EMCV_BOGUS'", out);
+    check_rejected(scene + "--define EMCV_HISTORY_N_MAX=0", 2, "EMCV_HISTORY_N_MAX takes an integer in [1, 1024]", out);
+    check_rejected(scene + "--define EMCV_HISTORY_TARGET=1e-4x", 2, "EMCV_HISTORY_TARGET takes a number in (0, 1]", out);
+    check_rejected(scene + "--define EMCV_HISTORY_N_MAX", 2, "--define: expected NAME=VALUE", out);
+    check_rejected(scene + "--list-methods=yes", 2, "--list-methods: takes no value", out);
     check_rejected(scene + "--window", 2, "--window: cannot be combined with --out", out);
     check_rejected(scene + "--no-frames --exr", 2, "--no-frames: cannot be combined with --exr", out);
     const emcv_test::command_result alone = run_demo(scene + "--no-frames");
@@ -185,6 +191,35 @@ TEST_CASE("the pass list (--print-passes) is printed per method without a GL con
     CHECK(r.out.find("method burley-8:\n  frames 0-2: gbuffer, shadow:key, lighting, sss-tiles, sss-burley, "
                      "composite\n") != std::string::npos);
     CHECK(r.out.find("method reference") == std::string::npos);
+}
+
+TEST_CASE("print-passes walks the renderer's planner: the reference records no SSS pass while it reuses", "[app][cli]") {
+    // tiny.json's camera and lights do not change: frame 0 renders the reference, frames 1-2 show it again.
+    const emcv_test::command_result r =
+        run_demo("--scene '" + data_dir + "/tiny.json' --frames 3 --print-passes --method reference",
+                 "EMCV_GL_PLATFORMS=none");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.out == "method reference:\n"
+                   "  frames 0-0: gbuffer, shadow:key, lighting, sss-tiles, sss-burley, composite\n"
+                   "  frames 1-2: gbuffer, shadow:key, lighting, composite\n");
+}
+
+TEST_CASE("list-methods prints the method table: name, SSS passes, help", "[app][cli]") {
+    const emcv_test::command_result r = run_demo("--list-methods", "EMCV_GL_PLATFORMS=none");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    std::vector<std::string> names, passes;
+    std::istringstream lines(r.out);
+    for (std::string line; std::getline(lines, line);) {
+        const std::size_t a = line.find('\t'), b = line.find('\t', a + 1);
+        REQUIRE(b != std::string::npos);
+        CHECK(b + 1 < line.size());  // a help line
+        names.push_back(line.substr(0, a));
+        passes.push_back(line.substr(a + 1, b - a - 1));
+    }
+    CHECK(names == std::vector<std::string>{"diffuse", "burley-16", "separable-17", "reference", "spvg", "cv", "cv-notex"});
+    CHECK(passes == std::vector<std::string>{"none", "burley", "separable", "burley", "adaptive", "adaptive", "adaptive"});
 }
 
 TEST_CASE("a small headless run writes frames and complete metrics files", "[app][cli][gl][image-files]") {

@@ -41,6 +41,9 @@ TEST_CASE("emcv-eval: bad usage exits 2 and names the argument", "[cli][eval]") 
         {"--method spvg --sss-scale 2x", "got '2x'"},
         {"--method spvg --heatmaps 1,x --heatmap-dir d", "--heatmaps: expected an integer in 0..100000, got 'x'"},
         {"--method spvg --heatmaps 1", "--heatmaps needs --heatmap-dir DIR"},
+        {"--method spvg --define EMCV_BOGUS=1", "--define: unknown tunable 'EMCV_BOGUS'"},
+        {"--method spvg --define EMCV_HISTORY_ETA_EMCM=0", "EMCV_HISTORY_ETA_EMCM takes a number in (0, 1]"},
+        {"--method spvg --define", "--define: missing value"},
     });
     CHECK(emcv_cli_test::entries(dir) == 0);
     fs::remove_all(dir);

@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: MIT
-// The shader and include folders a test reads at run time, resolved as the renderer resolves its own: the
-// environment variable EMCV_SHADER_DIR / EMCV_INCLUDE_DIR when set and non-empty, else the source tree the test
-// was built from. A mutation check points them at a modified copy, and then every test that compiles shaders
+// The shader and include folders a test reads at run time, resolved by the renderer's own rule
+// (gl::shader_source_dir): the environment variable EMCV_SHADER_DIR / EMCV_INCLUDE_DIR when set and non-empty,
+// else the source tree the test was built from. A mutation check points them at a modified copy, and then every test that compiles shaders
 // runs that copy, not only the renderer: a test reading the source tree would keep passing on the original.
 #pragma once
 
-#include <cstdlib>
 #include <filesystem>
 #include <vector>
+
+#include "gl/shader_preprocessor.hpp"
 
 #ifndef EMCV_SOURCE_DIR
 #error "tests/support/source_dirs.hpp needs EMCV_SOURCE_DIR, the source tree the test is built from"
@@ -17,8 +18,7 @@ namespace emcv_test {
 
 /// `$environment` when set and non-empty, else `compiled`.
 inline std::filesystem::path dir_from_environment(const char* environment, const std::filesystem::path& compiled) {
-    if (const char* value = std::getenv(environment); value != nullptr && *value != '\0') return value;
-    return compiled;
+    return emcv::gl::shader_source_dir({}, environment, compiled);
 }
 
 /// The shaders/ folder: $EMCV_SHADER_DIR, else <source>/shaders.

@@ -9,7 +9,6 @@ namespace emcv::demo::passes {
 
 void composite(const frame_context& c) {
     const gpu_resources& r = c.res;
-    bind_frame_textures(c);
     c.programs.composite.use();
     glBindTextureUnit(EMCV_RENDER_TEX_SSS_IN, r.sss_out.id());
     glBindImageTexture(EMCV_RENDER_IMG_LINEAR, r.linear_out.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);

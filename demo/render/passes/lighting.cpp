@@ -8,7 +8,6 @@ namespace emcv::demo::passes {
 
 void lighting(const frame_context& c) {
     const gpu_resources& r = c.res;
-    bind_frame_textures(c);
     c.programs.lighting.use();
     glBindImageTexture(EMCV_RENDER_IMG_DIFFUSE, r.lit_diffuse.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(EMCV_RENDER_IMG_SPECULAR, r.lit_specular.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);

@@ -21,8 +21,17 @@ void record(const planned_pass& p, const frame_context& c) {
     }
 }
 
-void bind_frame_textures(const frame_context& c) {
+void bind_frame_resources(const frame_context& c) {
     const gpu_resources& r = c.res;
+    glBindBufferBase(GL_UNIFORM_BUFFER, EMCV_RENDER_FRAME, r.frame_ubo.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMCV_RENDER_LIGHTS, r.lights_ssbo.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMCV_RENDER_MATERIALS, r.materials_ssbo.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMCV_RENDER_OBJECTS, r.objects_ssbo.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMCV_RENDER_STATS, r.stats_ssbo.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMCV_RENDER_TILES, r.tiles_ssbo.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMCV_RENDER_KERNELS, r.kernels_ssbo.id());
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, r.tiles_ssbo.id());
+    glBindVertexArray(r.vao.id());
     glBindTextureUnit(EMCV_RENDER_TEX_SHADOWS, r.shadow_maps.id());
     glBindTextureUnit(EMCV_RENDER_TEX_DEPTH, r.gb_depth.id());
     glBindTextureUnit(EMCV_RENDER_TEX_NORMAL, r.gb_normal.id());

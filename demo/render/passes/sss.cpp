@@ -16,22 +16,12 @@ static_assert(EMCV_RENDER_IMG_DIFFUSE != EMCV_RENDER_IMG_SPECULAR && EMCV_RENDER
 
 namespace emcv::demo::passes {
 
-namespace {
-
-/// The SSS passes run over the tile list that sss-tiles wrote (indirect dispatch arguments at its start).
-void bind_tile_dispatch(const frame_context& c) { glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, c.res.tiles_ssbo.id()); }
-
-adaptive::history& history_of(const frame_context& c) {
-    // frame_planner plans the adaptive passes only for methods whose row says so, and the renderer makes the
-    // history for exactly those.
-    return *c.history;
-}
-
-}  // namespace
+// frame_planner plans the adaptive passes only for the adaptive methods (method table), and the renderer makes a
+// history for exactly those: c.history is set wherever they run. The SSS passes dispatch indirectly from the
+// tile list that sss-tiles wrote (bound once per frame, passes.hpp).
 
 void sss_tiles(const frame_context& c) {
     const gpu_resources& r = c.res;
-    bind_frame_textures(c);
     const GLuint header[4] = {0u, 0u, 1u, 0u};  // no tiles yet: the dispatch pass writes x, y from w
     glNamedBufferSubData(r.tiles_ssbo.id(), 0, sizeof header, header);
     glClearNamedBufferData(r.stats_ssbo.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
@@ -46,15 +36,11 @@ void sss_tiles(const frame_context& c) {
 }
 
 void sss_adaptive_samples(const frame_context& c) {
-    bind_frame_textures(c);
-    bind_tile_dispatch(c);
-    history_of(c).record_samples();
+    c.history->record_samples();
 }
 
 void sss_burley(const frame_context& c) {
     const gpu_resources& r = c.res;
-    bind_frame_textures(c);
-    bind_tile_dispatch(c);
     c.programs.burley.use();
     glBindImageTexture(EMCV_RENDER_IMG_COUNT, r.counts.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32UI);
     glBindImageTexture(EMCV_RENDER_IMG_SSS_OUT, r.sss_out.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -64,15 +50,11 @@ void sss_burley(const frame_context& c) {
 }
 
 void sss_adaptive_update(const frame_context& c) {
-    bind_frame_textures(c);
-    bind_tile_dispatch(c);
-    history_of(c).record_update(c.res.sss_out.id());
+    c.history->record_update(c.res.sss_out.id());
 }
 
 void sss_separable(const frame_context& c, int direction) {
     const gpu_resources& r = c.res;
-    bind_frame_textures(c);
-    bind_tile_dispatch(c);
     c.programs.separable.use();
     const GLuint source = direction == 0 ? r.lit_diffuse.id() : r.sss_temp.id();
     const GLuint target = direction == 0 ? r.sss_temp.id() : r.sss_out.id();
