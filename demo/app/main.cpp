@@ -89,10 +89,11 @@ int main(int argc, char** argv) {
         } else {
             const run_result result = run_headless(s, o, frames);
             std::vector<std::string> notes;
-            if (const std::optional<int> change = first_light_change(s, frames))
-                if (std::optional<std::string> line = compare_after_change(result.rows, *change, method{method::kind::cv}.name(),
-                                                                                method{method::kind::spvg}.name()))
+            if (const std::optional<int> change = first_light_change(s, frames)) {
+                const std::string cv = method{method::kind::cv}.name(), spvg = method{method::kind::spvg}.name();
+                if (std::optional<std::string> line = compare_after_change(result.rows, *change, cv, spvg))
                     notes.push_back(std::move(*line));
+            }
             std::cout << "scene " << s.name << ", " << o.width << "x" << o.height << ", " << frames
                       << " frames, seed " << o.seed << ", " << context.renderer() << '\n'
                       << "times: GPU ms per frame (mean, p95) from frame 1 on (frame 0 is warm-up); spp: samples per SSS "

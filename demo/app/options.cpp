@@ -81,7 +81,7 @@ std::string usage_text() {
            "  --window            show the renderer in a window (keys: see docs/demo.md); --frames ends it\n"
            "  --list-scenes       list the built-in scenes with their descriptions\n"
            "  --print-passes      print the pass list of each frame where it changes, render nothing\n"
-           "  --list-methods      print every method's name, one per line (what --method all renders first)\n"
+           "  --list-methods      print the method table: per line a name, its SSS passes and its help, tab-separated\n"
            "  --help              print this text\n"
            "Bad input exits with status 2 and writes nothing.\n";
 }

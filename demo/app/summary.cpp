@@ -106,8 +106,8 @@ std::optional<std::string> compare_after_change(const std::vector<metrics_row>& 
         }
         return m;
     };
-    const window_means spvg = means_of(baseline), cv = means_of(name);
-    if (spvg.frames == 0 || cv.frames == 0) return std::nullopt;
+    const window_means base = means_of(baseline), cand = means_of(name);
+    if (base.frames == 0 || cand.frames == 0) return std::nullopt;
     int last = first_change;
     for (const metrics_row& r : rows)
         if (r.method == name && r.frame >= first_change && r.frame < end) last = std::max(last, r.frame);
@@ -118,20 +118,21 @@ std::optional<std::string> compare_after_change(const std::vector<metrics_row>& 
         std::snprintf(t, sizeof t, "%.3fx", a / b);
         return t;
     };
-    const std::optional<double> db_cv = mean_psnr(cv.psnr), db_spvg = mean_psnr(spvg.psnr);
+    const std::optional<double> db_name = mean_psnr(cand.psnr), db_baseline = mean_psnr(base.psnr);
     std::string gap = "-";
-    if (db_cv && db_spvg && std::isfinite(*db_cv) && std::isfinite(*db_spvg)) {
+    if (db_name && db_baseline && std::isfinite(*db_name) && std::isfinite(*db_baseline)) {
         char t[32];
-        std::snprintf(t, sizeof t, "%+.2f dB", *db_cv - *db_spvg);
+        std::snprintf(t, sizeof t, "%+.2f dB", *db_name - *db_baseline);
         gap = t;
     }
     char line[320];
     std::snprintf(line, sizeof line,
                   "%s vs %s, frames %d-%d (from the first light change at frame %d): samples %s, SSS pass time "
                   "%s, PSNR %s (%s %s, %s %s)",
-                  name.c_str(), baseline.c_str(), first_change, last, first_change, ratio(cv.spp / cv.frames, spvg.spp / spvg.frames).c_str(),
-                  ratio(cv.sss_ms / cv.frames, spvg.sss_ms / spvg.frames).c_str(), gap.c_str(), name.c_str(),
-                  psnr_text(db_cv).c_str(), baseline.c_str(), psnr_text(db_spvg).c_str());
+                  name.c_str(), baseline.c_str(), first_change, last, first_change,
+                  ratio(cand.spp / cand.frames, base.spp / base.frames).c_str(),
+                  ratio(cand.sss_ms / cand.frames, base.sss_ms / base.frames).c_str(), gap.c_str(), name.c_str(),
+                  psnr_text(db_name).c_str(), baseline.c_str(), psnr_text(db_baseline).c_str());
     return std::string(line);
 }
 

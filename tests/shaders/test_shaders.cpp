@@ -70,8 +70,6 @@ private:
     std::optional<std::string> old_;
 };
 
-}  // namespace
-
 /// The defines a shader is built with by the renderer: the adaptive passes once per adaptive method's define
 /// (method table), every other shader once without.
 std::vector<std::string> method_defines(const fs::path& shader) {
@@ -81,6 +79,8 @@ std::vector<std::string> method_defines(const fs::path& shader) {
         if (!r.adaptive_define.empty()) out.emplace_back(r.adaptive_define);
     return out;
 }
+
+}  // namespace
 
 TEST_CASE("every shader preprocesses and validates with glslangValidator for OpenGL and Vulkan") {
     int shaders = 0;
