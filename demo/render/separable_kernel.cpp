@@ -18,10 +18,7 @@ double burley_marginal_tail(double t, double d) {
     double sum = 0.0;
     for (int i = 0; i < steps; ++i) {
         const double u = (i + 0.5) / steps;
-        const double v = 1.0 - u;
-        const double g = 1.0 + 4.0 * v * (2.0 * v + std::sqrt(1.0 + 4.0 * v * v));
-        const double g13 = std::cbrt(g);
-        const double r = 3.0 * d * std::log((1.0 + g13 + 1.0 / g13) / (4.0 * v));
+        const double r = emcv::port::emcv_burley_sample_exact(u, d);
         if (r > t) sum += std::acos(t / r) / pi;
     }
     return sum / steps;

@@ -45,14 +45,25 @@ EMCV_FN float emcv_burley_cdf(float r, float d) {
     return 1.0f - 0.25f * exp(-r / d) - 0.75f * exp(-r / (3.0f * d));
 }
 
+// The exact inverse CDF is written once for fp32 (C++ and GLSL) and, in C++ only, for double as well: the
+// separable kernel's quadrature (demo/render/separable_kernel.cpp) integrates it in double. EMCV_BURLEY_REAL is
+// the scalar: a template parameter in C++ (deduced from the arguments), float in GLSL.
+#ifdef __cplusplus
+#define EMCV_BURLEY_REAL Real
+template <class Real>
+#else
+#define EMCV_BURLEY_REAL float
+#endif
 /// Exact inverse of the CDF, u in [0, 1): closed form (Golubev; docs/frame.md).
-EMCV_FN float emcv_burley_sample_exact(float u, float d) {
-    float v = 1.0f - u;
-    float g = 1.0f + 4.0f * v * (2.0f * v + sqrt(1.0f + 4.0f * v * v));
-    float g13 = pow(g, 1.0f / 3.0f);
-    float x = log((1.0f + g13 + 1.0f / g13) / (4.0f * v));
-    return 3.0f * d * x;
+EMCV_FN EMCV_BURLEY_REAL emcv_burley_sample_exact(EMCV_BURLEY_REAL u, EMCV_BURLEY_REAL d) {
+    EMCV_BURLEY_REAL one = EMCV_BURLEY_REAL(1);
+    EMCV_BURLEY_REAL v = one - u;
+    EMCV_BURLEY_REAL g = one + EMCV_BURLEY_REAL(4) * v * (EMCV_BURLEY_REAL(2) * v + sqrt(one + EMCV_BURLEY_REAL(4) * v * v));
+    EMCV_BURLEY_REAL g13 = pow(g, one / EMCV_BURLEY_REAL(3));
+    EMCV_BURLEY_REAL x = log((one + g13 + one / g13) / (EMCV_BURLEY_REAL(4) * v));
+    return EMCV_BURLEY_REAL(3) * d * x;
 }
+#undef EMCV_BURLEY_REAL
 
 /// SPVG's approximation r ~ d (2 + (c - 2) u) (-ln(1 - u)), u in [0, 1).
 EMCV_FN float emcv_burley_sample_spvg(float u, float d) {
