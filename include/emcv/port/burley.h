@@ -49,9 +49,11 @@ EMCV_FN float emcv_burley_cdf(float r, float d) {
 // separable kernel's quadrature (demo/render/separable_kernel.cpp) integrates it in double. EMCV_BURLEY_REAL is
 // the scalar: a template parameter in C++ (deduced from the arguments), float in GLSL.
 #ifdef __cplusplus
+/// The scalar of emcv_burley_sample_exact: its template parameter in C++ (undefined after the function).
 #define EMCV_BURLEY_REAL Real
 template <class Real>
 #else
+/// The scalar of emcv_burley_sample_exact: float in GLSL (undefined after the function).
 #define EMCV_BURLEY_REAL float
 #endif
 /// Exact inverse of the CDF, u in [0, 1): closed form (Golubev; docs/frame.md).
