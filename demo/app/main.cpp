@@ -13,6 +13,7 @@
 #include "gl/context.hpp"
 #include "gl/debug.hpp"
 #include "headless_run.hpp"
+#include "render/tunables.hpp"
 #include "light_change.hpp"
 #include "listings.hpp"
 #include "options.hpp"
@@ -69,7 +70,7 @@ int main(int argc, char** argv) {
     }
     const int frames = o.frames.value_or(std::max(1, s.frames));
     if (o.print_passes) {
-        print_passes(std::cout, s, o.methods, frames, o.width, o.height);
+        print_passes(std::cout, s, o.methods, frames, o.width, o.height, sampling_mode_of(o.defines).budget);
         return 0;
     }
 

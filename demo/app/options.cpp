@@ -76,6 +76,7 @@ std::string usage_text() {
            "  --exr               also write linear HDR frames as EXR\n"
            "  --no-frames         with --out: write metrics.csv/json only, no frames (large benchmark runs)\n"
            "  --approximate-cdf   burley-N draws radii with SPVG's inverse-CDF fit instead of the exact inverse\n"
+           + sampling_flags_help() +
            "  --define NAME=VALUE set a tunable of the port headers for every shader (repeatable; names and\n"
            "                      ranges: docs/renderer.md, Tunables)\n"
            "  --window            show the renderer in a window (keys: see docs/demo.md); --frames ends it\n"
@@ -89,6 +90,7 @@ std::string usage_text() {
 options parse_options(const std::vector<std::string>& args) {
     options o;
     bool methods_given = false;
+    std::string sampling_flag;  // --spp-budget or --target-variance, once seen
     for (std::size_t i = 0; i < args.size(); ++i) {
         cli::flag_argument<usage_error> argument(args, i);
         const std::string& flag = argument.name();
@@ -110,6 +112,12 @@ options parse_options(const std::vector<std::string>& args) {
         else if (flag == "--define") {
             try {
                 add_define(o.defines, next_value());
+            } catch (const tunable_error& e) {
+                throw usage_error(e.what());
+            }
+        } else if (flag == "--spp-budget" || flag == "--target-variance") {
+            try {
+                add_sampling_flag(o.defines, flag, next_value(), sampling_flag);
             } catch (const tunable_error& e) {
                 throw usage_error(e.what());
             }
@@ -162,6 +170,11 @@ options parse_options(const std::vector<std::string>& args) {
     if (o.no_frames && !o.out) throw usage_error("--no-frames: needs --out (it only leaves out the frames)");
     if (o.no_frames && o.exr) throw usage_error("--no-frames: cannot be combined with --exr");
     if (o.window && o.out) throw usage_error("--window: cannot be combined with --out (the window writes nothing)");
+    try {
+        check_tunables(o.defines);
+    } catch (const tunable_error& e) {
+        throw usage_error(e.what());
+    }
     return o;
 }
 

@@ -29,14 +29,15 @@ enum class pass_id {
     shadow,
     lighting,
     sss_tiles,
-    sss_adaptive_samples,  ///< N per pixel from the reprojected history
+    sss_adaptive_samples,  ///< N per pixel from the reprojected history (budget mode: its variance)
+    sss_adaptive_budget,   ///< budget mode: the scale of N = clamp(lambda sigma) from this frame's histogram
     sss_burley,
     sss_adaptive_update,   ///< this frame's (f, G) into the history
     sss_separable_h,
     sss_separable_v,
     composite,
 };
-inline constexpr std::size_t pass_id_count = 10;
+inline constexpr std::size_t pass_id_count = 11;
 
 /// "gbuffer", "shadow", "lighting", "sss-tiles", "sss-adaptive-samples", "sss-burley", ...
 std::string_view pass_base_name(pass_id id);
@@ -61,7 +62,9 @@ std::vector<std::size_t> shadow_casters(const scene& s);
 /// nothing after the first call.
 class frame_planner {
 public:
-    frame_planner(const scene& s, const method& m, int width, int height);
+    /// `budget`: the adaptive methods spend a sample budget (sampling_mode_of the tunables), which adds the
+    /// sss-adaptive-budget pass after their samples pass.
+    frame_planner(const scene& s, const method& m, int width, int height, bool budget = false);
 
     /// The passes of `frame`; `light_scale` multiplies each light's intensity (the window's toggles), empty
     /// for 1 everywhere.
@@ -81,6 +84,7 @@ private:
     const scene* s_;
     method m_;
     int width_, height_;
+    bool budget_;
     std::vector<bounding_sphere> sss_bounds_;
     std::vector<std::size_t> casters_;
     std::vector<planned_pass> passes_;
@@ -91,6 +95,7 @@ private:
 
 /// The names of frame_planner's list for one frame, planned from scratch (no held reference result): what
 /// `--print-passes` prints for frame 0 and the tests compare with.
-std::vector<std::string> pass_list(const scene& s, const method& m, int frame, int width, int height);
+std::vector<std::string> pass_list(const scene& s, const method& m, int frame, int width, int height,
+                                   bool budget = false);
 
 }  // namespace emcv::demo

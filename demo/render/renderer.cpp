@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "adaptive/history.hpp"
+#include "tunables.hpp"
 #include "frame_constants.hpp"
 #include "gl/timer.hpp"
 #include "passes/passes.hpp"
@@ -31,6 +32,7 @@ render_options validated(render_options o) {
                                  " out of range (1.." + std::to_string(max_size) + " per side)");
     }
     if (!(o.exposure > 0.0f) || !std::isfinite(o.exposure)) throw std::runtime_error("renderer: exposure must be > 0");
+    check_tunables(o.defines);
     return o;
 }
 
@@ -62,7 +64,7 @@ struct renderer::impl {
 
     impl(const scene& sc, method me, render_options op)
         : s(sc), m(me), o(validated(std::move(op))), shaders(make_shader_setup(o)), programs(make_pass_programs(shaders)),
-          res(make_gpu_resources(s, m, o.width, o.height)), planner(s, m, o.width, o.height), constants(s),
+          res(make_gpu_resources(s, m, o.width, o.height)), planner(s, m, o.width, o.height, sampling_mode_of(o.defines).budget), constants(s),
           light_scale(s.lights.size(), 1.0f) {
         make_history();
         for (std::size_t id = 0; id < pass_id_count; ++id)
@@ -198,7 +200,7 @@ const frame_stats& renderer::render(int frame) { return p_->render(frame); }
 
 void renderer::set_method(const method& m) {
     p_->m = m;
-    p_->planner = frame_planner(p_->s, m, p_->o.width, p_->o.height);
+    p_->planner = frame_planner(p_->s, m, p_->o.width, p_->o.height, sampling_mode_of(p_->o.defines).budget);
     upload_materials(p_->res, p_->s, m);  // separable kernels follow the tap count
     p_->make_history();
 }

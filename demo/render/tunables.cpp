@@ -7,20 +7,26 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include <emcv/port/history.h>
+
 namespace emcv::demo {
 
 const std::vector<tunable>& tunables() {
     using t = tunable::type;
     static const std::vector<tunable> all{
-        {"EMCV_HISTORY_TARGET", t::real, 0.0, 1.0, true, "target variance of the gamma-space luminance"},
-        {"EMCV_HISTORY_N_MAX", t::integer, 1, 1024, false, "most samples per pixel and frame"},
-        {"EMCV_HISTORY_SPVG_N_MIN", t::integer, 0, 1024, false, "spvg's fewest samples per SSS pixel"},
-        {"EMCV_HISTORY_RESIDUAL_N_MIN", t::integer, 0, 1024, false, "cv's and cv-notex's fewest samples"},
-        {"EMCV_HISTORY_ETA_MOVING", t::real, 0.0, 1.0, true, "moving mean/variance weight (spvg, cv-notex)"},
-        {"EMCV_HISTORY_ETA_EMCM", t::real, 0.0, 1.0, true, "EMCM weight (cv)"},
-        {"EMCV_HISTORY_MAX_COUNT", t::unsigned_integer, 2, 2048, false, "saturating frame count of a texel"},
-        {"EMCV_HISTORY_FOOTPRINT_RADIUS_PER_D", t::real, 0.0, 100.0, true, "kernel radius per shape distance"},
-        {"EMCV_HISTORY_CV_SETTLE_N", t::integer, 0, 1024, false, "cv's floor while it settles after a change"},
+        {"EMCV_HISTORY_TARGET", t::real, 0.0, 1.0, true, "quality mode: the output variance aimed at",
+         EMCV_HISTORY_TARGET},
+        {"EMCV_HISTORY_SPP_BUDGET", t::real, 0.0, 1024.0, false, "budget mode when > 0: mean samples per SSS pixel",
+         EMCV_HISTORY_SPP_BUDGET},
+        {"EMCV_HISTORY_N_MAX", t::integer, 1, 1024, false, "most samples per pixel and frame", EMCV_HISTORY_N_MAX},
+        {"EMCV_HISTORY_N_MIN", t::integer, 1, 1024, false, "fewest samples of a pixel that scatters", EMCV_HISTORY_N_MIN},
+        {"EMCV_HISTORY_ETA_MOVING", t::real, 0.0, 0.5, true, "moving mean/variance weight (spvg, cv-notex)",
+         EMCV_HISTORY_ETA_MOVING},
+        {"EMCV_HISTORY_ETA_EMCM", t::real, 0.0, 0.5, true, "EMCM weight (cv)", EMCV_HISTORY_ETA_EMCM},
+        {"EMCV_HISTORY_MAX_COUNT", t::unsigned_integer, 2, 2048, false, "saturating frame count of a texel",
+         double(EMCV_HISTORY_MAX_COUNT)},
+        {"EMCV_HISTORY_FOOTPRINT_RADIUS_PER_D", t::real, 0.0, 100.0, true, "kernel radius per shape distance",
+         EMCV_HISTORY_FOOTPRINT_RADIUS_PER_D},
     };
     return all;
 }
@@ -77,6 +83,72 @@ void add_define(std::vector<std::pair<std::string, std::string>>& defines, std::
     defines.erase(std::remove_if(defines.begin(), defines.end(), [&](const auto& e) { return e.first == d.first; }),
                   defines.end());
     defines.push_back(std::move(d));
+}
+
+double tunable_value(const define_list& defines, std::string_view name) {
+    const tunable* found = nullptr;
+    for (const tunable& t : tunables())
+        if (t.name == name) found = &t;
+    if (found == nullptr) throw tunable_error("tunable_value: '" + std::string(name) + "' is not a tunable");
+    for (auto it = defines.rbegin(); it != defines.rend(); ++it)
+        if (it->first == name) return std::strtod(it->second.c_str(), nullptr);  // stops at the literal's suffix
+    return found->default_value;
+}
+
+void check_tunables(const define_list& defines) {
+    const double n_min = tunable_value(defines, "EMCV_HISTORY_N_MIN"), n_max = tunable_value(defines, "EMCV_HISTORY_N_MAX");
+    const double budget = tunable_value(defines, "EMCV_HISTORY_SPP_BUDGET");
+    char text[160];
+    if (n_min > n_max) {
+        std::snprintf(text, sizeof text, "--define: EMCV_HISTORY_N_MIN (%g) exceeds EMCV_HISTORY_N_MAX (%g)", n_min, n_max);
+        throw tunable_error(text);
+    }
+    if (budget > n_max) {
+        std::snprintf(text, sizeof text, "a budget of %g samples per pixel exceeds EMCV_HISTORY_N_MAX (%g)", budget, n_max);
+        throw tunable_error(text);
+    }
+}
+
+void add_sampling_flag(define_list& defines, std::string_view flag, std::string_view value, std::string& previous) {
+    const bool budget = flag == "--spp-budget";
+    if (!budget && flag != "--target-variance")
+        throw tunable_error("add_sampling_flag: '" + std::string(flag) + "' is not a sampling flag");
+    if (!previous.empty() && previous != flag)
+        throw tunable_error(std::string(flag) + ": cannot be combined with " + previous +
+                            " (a run spends a budget or aims at a variance, not both)");
+    previous = std::string(flag);
+    const std::string name = budget ? "EMCV_HISTORY_SPP_BUDGET" : "EMCV_HISTORY_TARGET";
+    try {
+        const std::pair<std::string, std::string> d = parse_define(name + "=" + std::string(value));
+        if (budget && !(std::strtod(d.second.c_str(), nullptr) > 0.0)) throw tunable_error("zero budget");
+    } catch (const tunable_error&) {
+        throw tunable_error(std::string(flag) + ": expected a number in " + (budget ? "(0, 1024]" : "(0, 1]") +
+                            ", got '" + std::string(value) + "'");
+    }
+    add_define(defines, name + "=" + std::string(value));
+    if (!budget) add_define(defines, "EMCV_HISTORY_SPP_BUDGET=0");
+}
+
+std::string sampling_flags_help() {
+    return "  --spp-budget B      adaptive methods: spend a mean of B samples per SSS pixel and frame, in\n"
+           "                      proportion to each pixel's noise (budget mode; compare with burley-B)\n"
+           "  --target-variance V adaptive methods: take N = variance per sample / V samples per pixel (quality\n"
+           "                      mode, the default, V = 1e-4); not with --spp-budget\n";
+}
+
+std::string sampling_mode::text() const {
+    char out[64];
+    if (budget)
+        std::snprintf(out, sizeof out, "budget %g spp", value);
+    else
+        std::snprintf(out, sizeof out, "target variance %g", value);
+    return out;
+}
+
+sampling_mode sampling_mode_of(const define_list& defines) {
+    const double budget = tunable_value(defines, "EMCV_HISTORY_SPP_BUDGET");
+    if (budget > 0.0) return {true, budget};
+    return {false, tunable_value(defines, "EMCV_HISTORY_TARGET")};
 }
 
 }  // namespace emcv::demo

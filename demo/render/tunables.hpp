@@ -20,6 +20,7 @@ struct tunable {
     double maximum;  ///< inclusive
     bool minimum_exclusive;
     std::string_view meaning;
+    double default_value;  ///< the header's own value (read from the header's macro)
 };
 
 /// Every tunable of the port headers (a test keeps this list equal to the headers' #ifndef blocks).
@@ -35,6 +36,37 @@ public:
 /// "NAME=VALUE" -> (NAME, the value as a GLSL literal of the tunable's type: "2.5e-05f", "12", "512u").
 /// Throws tunable_error.
 std::pair<std::string, std::string> parse_define(std::string_view text);
+
+/// The tunables' values as `--define` collects them: (NAME, GLSL literal), later entries win.
+using define_list = std::vector<std::pair<std::string, std::string>>;
+
+/// The value `defines` sets NAME to (its last entry), else the header's default. Throws tunable_error for a
+/// name that is not a tunable.
+double tunable_value(const define_list& defines, std::string_view name);
+
+/// Throws tunable_error when values that are each in range contradict each other: N_MIN > N_MAX, or a budget
+/// above N_MAX.
+void check_tunables(const define_list& defines);
+
+/// How the adaptive methods turn per-sample variance into counts (include/emcv/port/history.h), decided by
+/// the tunables alone: EMCV_HISTORY_SPP_BUDGET > 0 is budget mode (value = B, mean samples per SSS pixel),
+/// else the quality target (value = EMCV_HISTORY_TARGET, the output variance aimed at).
+struct sampling_mode {
+    bool budget = false;
+    double value = 0.0;
+    /// "budget 8 spp" or "target variance 0.0001": what metrics and summaries print.
+    std::string text() const;
+};
+sampling_mode sampling_mode_of(const define_list& defines);
+
+/// `--spp-budget B` (B in (0, 1024]) or `--target-variance V` (V in (0, 1]) as the tunables they set:
+/// EMCV_HISTORY_SPP_BUDGET = B, or EMCV_HISTORY_TARGET = V with the budget set to 0. `previous` holds the
+/// sampling flag seen before ("" for none) and is updated. Throws tunable_error naming the flag for a bad
+/// value, or when both flags are given (one sampling mode per run).
+void add_sampling_flag(define_list& defines, std::string_view flag, std::string_view value, std::string& previous);
+
+/// The help lines of those two flags, for the command lines that take them.
+std::string sampling_flags_help();
 
 /// parse_define, then into `defines`, replacing an earlier value of the same name (a later --define wins).
 void add_define(std::vector<std::pair<std::string, std::string>>& defines, std::string_view text);

@@ -15,6 +15,11 @@
 #define EMCV_ADAPTIVE_TEX_PREV_NORMAL 27      // last frame's world normal (RGBA16F)
 #define EMCV_ADAPTIVE_TEX_PREV_MATERIAL 28    // last frame's material index + 1 (R8UI)
 
+// Buffers
+// storage: the budget's sigma histogram and solved scale (emcv/port/budget.h). The separable kernels' slot: no
+// frame runs a separable pass and an adaptive one, and each adaptive pass binds it before its dispatch.
+#define EMCV_ADAPTIVE_BUDGET EMCV_RENDER_KERNELS
+
 // Images: this frame's history (written by adaptive-samples, updated in place by adaptive-update) and N
 #define EMCV_ADAPTIVE_IMG_SAMPLES 2           // samples per pixel for the burley pass (R32UI)
 #define EMCV_ADAPTIVE_IMG_HISTORY_A 3

@@ -6,7 +6,9 @@
 #define EMCV_ADAPTIVE_HISTORY_IO_H
 
 #include "emcv/port/history.h"
+#include "emcv/port/sss.h"
 #include "adaptive/bindings.h"
+#include "adaptive/budget_block.h"
 #include "render/gbuffer_read.h"
 
 #if defined(EMCV_ADAPTIVE_CV)
@@ -57,14 +59,26 @@ void emcv_adaptive_store_raw(ivec2 p, vec4 a, vec4 b) {
 #endif
 }
 
-/// The method's sample count from its state.
-int emcv_adaptive_count(EmcvAdaptiveState s) {
+/// The method's per-sample variance from its state (emcv_history_no_variance() before two frames): spvg f's,
+/// cv the residual's at the EMCM's alpha, cv-notex the residual's at alpha = 1.
+float emcv_adaptive_sigma2(EmcvAdaptiveState s) {
 #if defined(EMCV_ADAPTIVE_CV)
-    return emcv_history_count_cv(s);
-#elif defined(EMCV_ADAPTIVE_NOTEX)
-    return emcv_history_count_notex(s);
+    return emcv_history_sigma2_cv(s, EMCV_HISTORY_ETA_EMCM);
 #else
-    return emcv_history_count_spvg(s);
+    return emcv_history_sigma2_moving(s, EMCV_HISTORY_ETA_MOVING);
+#endif
+}
+
+/// Whether the pixel's kernel is under a pixel, where the control-variate methods take no samples (spvg never
+/// skips: it has no control to stand in for the scattered value).
+bool emcv_adaptive_sub_pixel(ivec2 p, uint code) {
+#if defined(EMCV_ADAPTIVE_CV) || defined(EMCV_ADAPTIVE_NOTEX)
+    vec3 d = emcv_sss_shape_distance(materials[code - 1u].mean_free_path.xyz, texelFetch(gbuffer_albedo, p, 0).xyz);
+    float pixels_per_mm = emcv_sss_pixels_per_mm(frame.projection.x, frame.viewport.x, emcv_render_depth(p),
+                                                 frame.camera_position.w);
+    return emcv_history_sub_pixel(emcv_sss_widest(d), pixels_per_mm);
+#else
+    return false;
 #endif
 }
 

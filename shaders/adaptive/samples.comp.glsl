@@ -4,10 +4,11 @@
 // tiles, each SSS pixel fetches last frame's history at its reprojected position (motion vectors, point
 // sampling), keeps it only when the position is on screen and the surface is the same (material, depth,
 // normal: emcv_history_reusable) and the texel is not poisoned, writes that state (or a fresh one) into this
-// frame's history, and writes the N the burley pass takes (EMCV_ADAPTIVE_IMG_SAMPLES).
+// frame's history, and writes what the burley pass takes (EMCV_ADAPTIVE_IMG_SAMPLES) from the history's per-sample
+// variance: N under a quality target; under a budget the variance itself (its bits), added to the histogram
+// from which sss-adaptive-budget solves lambda before the burley pass computes N (emcv/port/budget.h).
 #version 450 core
 
-#include "emcv/port/sss.h"
 #include "adaptive/history_io.h"
 #include "render/tiles.h"
 
@@ -51,7 +52,7 @@ void main() {
         // Inside an SSS tile but not scattering: no samples, and a fresh history so that nothing stale is
         // ever reprojected from here.
         emcv_adaptive_store(p, emcv_adaptive_init());
-        imageStore(samples_image, p, uvec4(0u));
+        imageStore(samples_image, p, uvec4(0u));  // the burley pass skips non-scattering pixels before reading
         return;
     }
     vec4 a, b;
@@ -62,12 +63,13 @@ void main() {
     } else {
         emcv_adaptive_store(p, s);
     }
-    int n = emcv_adaptive_count(s);
-#if defined(EMCV_ADAPTIVE_CV) || defined(EMCV_ADAPTIVE_NOTEX)
-    vec3 d = emcv_sss_shape_distance(materials[code - 1u].mean_free_path.xyz, texelFetch(gbuffer_albedo, p, 0).xyz);
-    float pixels_per_mm = emcv_sss_pixels_per_mm(frame.projection.x, frame.viewport.x, emcv_render_depth(p),
-                                                 frame.camera_position.w);
-    if (emcv_history_sub_pixel(emcv_sss_widest(d), pixels_per_mm)) n = 0;
-#endif
-    imageStore(samples_image, p, uvec4(uint(n)));
+    float sigma2 = emcv_adaptive_sub_pixel(p, code) ? emcv_history_no_samples() : emcv_adaptive_sigma2(s);
+    if (emcv_history_budget_mode()) {
+        // The burley pass turns sigma into N once sss-adaptive-budget has solved lambda from this frame's
+        // histogram: the image carries the variance (or its code) until then.
+        emcv_budget_add(sigma2);
+        imageStore(samples_image, p, uvec4(floatBitsToUint(sigma2)));
+    } else {
+        imageStore(samples_image, p, uvec4(uint(emcv_history_count_target(sigma2))));
+    }
 }

@@ -1,24 +1,34 @@
 // SPDX-License-Identifier: MIT
 // Burley screen-space SSS over the SSS tiles (indirect dispatch): N samples per scattering pixel drawn with the
 // widest channel, weighted per channel, sum(w L) / sum(w) (docs/frame.md). Every formula is from
-// include/emcv/port/sss.h. N is the frame's fixed count (burley-N, reference); the adaptive methods will read
-// it per pixel from the count texture instead.
+// include/emcv/port/sss.h. N is the frame's fixed count (burley-N, reference) or, for the adaptive methods,
+// the pixel's own (below).
 #version 450 core
 
 #include "emcv/port/sss.h"
 #include "render/gbuffer_read.h"
 #include "render/tiles.h"
-#include "adaptive/bindings.h"
+#include "adaptive/budget_block.h"
 
 layout(local_size_x = EMCV_RENDER_TILE_SIZE, local_size_y = EMCV_RENDER_TILE_SIZE) in;
 
 layout(rgba16f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_SSS_OUT)) writeonly uniform image2D out_scattered;
 layout(r32ui, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_COUNT)) writeonly uniform uimage2D out_count;
-// Adaptive methods (frame.sss.y = 1): N per pixel from the adaptive-samples pass (shaders/adaptive).
+// Adaptive methods (frame.sss.y = 1): N per pixel from the adaptive-samples pass (shaders/adaptive); in budget
+// mode that pass leaves the per-sample variance and N = clamp(lambda sigma) is taken here, with the lambda that
+// sss-adaptive-budget solved from the same frame's variances.
 layout(r32ui, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_SAMPLES)) readonly uniform uimage2D adaptive_samples;
 
 shared uint tile_sample_sum;
 shared uint tile_sample_max;
+
+/// The adaptive methods' N at p (see above).
+uint adaptive_count(ivec2 p) {
+    uint stored = imageLoad(adaptive_samples, p).x;
+    if (!emcv_history_budget_mode()) return stored;
+    float u = emcv_budget_u(uint(p.x), uint(p.y), frame.counters.x, frame.counters.y);
+    return uint(emcv_history_count_spend(uintBitsToFloat(stored), budget.lambda, u));
+}
 
 /// Scatters pixel p; returns the samples it took (0 off screen and for non-scattering pixels).
 uint scatter(ivec2 p) {
@@ -33,7 +43,7 @@ uint scatter(ivec2 p) {
     float pixels_per_mm = emcv_sss_pixels_per_mm(frame.projection.x, frame.viewport.x, z, mm_per_unit);
     bool approximate = (frame.counters.w & EMCV_RENDER_FLAG_APPROXIMATE_CDF) != 0u;
     vec2 rotation = emcv_sss_rotation(uint(p.x), uint(p.y), frame.counters.x, frame.counters.y);
-    uint n = frame.sss.y != 0 ? imageLoad(adaptive_samples, p).x : uint(frame.sss.x);
+    uint n = frame.sss.y != 0 ? adaptive_count(p) : uint(frame.sss.x);
 
     vec3 sum_wl = vec3(0.0f);
     vec3 sum_w = vec3(0.0f);

@@ -63,15 +63,10 @@ public:
         const float variance =
             m_.kind == estimator::cv_emcm ? cv_optimal_residual_variance(fg_) : res_.variance();
         if (m_.n_min >= 0) return sample_count(variance, c_.target, m_.n_min, c_.n_max);
-        // The renderer's rules (include/emcv/port/history.h): the cv family takes 0 samples on a sub-pixel
-        // kernel (the renderer's footprint test; here the pixels drawn with f = G exactly, the only ones whose
-        // residual variance is exactly 0), SPVG's clamp otherwise, and cv its settling floor while the light
-        // change explains more of f's variance than the residual does.
+        // The paper's rules: the cv family takes 0 samples on a sub-pixel kernel (here the pixels drawn with
+        // f = G exactly, the only ones whose residual variance is exactly 0), SPVG's clamp otherwise.
         if (m_.kind != estimator::spvg && variance == 0.0f) return 0;
-        const int n = sample_count(variance, c_.target, c_.spvg_n_min, c_.n_max);
-        if (m_.kind == estimator::cv_emcm && fg_.variance(0) - variance > variance)
-            return std::max(n, c_.cv_settle_n);
-        return n;
+        return sample_count(variance, c_.target, c_.spvg_n_min, c_.n_max);
     }
 
     void push(float f, float g) {

@@ -9,7 +9,6 @@
 #include <string>
 #include <vector>
 
-#include <emcv/port/history.h>
 
 namespace emcv::cvstudy {
 
@@ -27,9 +26,9 @@ enum class estimator {
 struct method_config {
     estimator kind = estimator::spvg;
     float eta = 0.2f;  ///< EMCM weight (cv_moving, cv_emcm); the moving-variance weight is always 0.2
-    /// -1: the method's own rule: spvg clamp(var / target, 8, 64); the cv family the renderer's rule
-    /// (include/emcv/port/history.h): 0 samples on a sub-pixel kernel (here: residual variance exactly 0),
-    /// else SPVG's clamp, and cv_emcm its settling floor (cv_settle_n) while the light change dominates.
+    /// -1: the paper's rule on the output's variance: spvg clamp(var / target, 8, 64); the cv family 0
+    /// samples on a sub-pixel kernel (here: residual variance exactly 0), else SPVG's clamp. (The renderer
+    /// now counts from the per-sample variance instead: docs/renderer.md; this study chose the estimator.)
     /// >= 0: plain clamp(var / target, n_min, 64).
     int n_min = -1;
     std::string name() const;
@@ -43,7 +42,6 @@ struct study_config {
     float target = 1.0e-4f;            ///< SPVG's target variance
     int n_max = 64;
     int spvg_n_min = 8;
-    int cv_settle_n = EMCV_HISTORY_CV_SETTLE_N;  ///< cv's floor while a light change dominates its EMCM
     float eta_res = 0.2f;              ///< moving-variance weight of SPVG and of the residual (cv_moving, cv_notex)
     bool sub_pixel = false;            ///< kernels under a pixel: the scattered value equals G exactly (no noise)
     /// Which stored state fields are rounded to binary16 after each frame (an RGBA16F history).

@@ -35,19 +35,21 @@ std::vector<std::string> split(const std::string& text) {
 std::string usage_text() {
     return "usage: emcv-eval --method M[,M...] [--scene FILE|NAME] [--size WxH] [--frames N] [--sss-scale K]\n"
            "                 [--seed S] [--heatmaps F[,F...] --heatmap-dir DIR] [--approximate-cdf]\n"
-           "                 [--define NAME=VALUE ...]\n"
+           "                 [--spp-budget B | --target-variance V] [--define NAME=VALUE ...]\n"
            "Renders the methods side by side, frame by frame (no reference), and prints one CSV row per frame\n"
            "and method: scene,width,height,sss_scale,method,frame,sss_ms,frame_ms,mean_spp,max_spp,sss_pixels,lights\n"
            "(lights: name=intensity;... of the scene's light curves at the frame).\n"
            "--sss-scale multiplies every scattering material's mean free path (the radius on screen).\n"
            "--heatmaps writes <method>.f<F>.samples.csv (and .alpha.csv for cv) under DIR, top row first.\n"
-           "--define sets a tunable of the port headers for every shader (as emcv-demo --define).\n"
+           "--define sets a tunable of the port headers for every shader (as emcv-demo --define).\n" +
+           demo::sampling_flags_help() +
            "Methods (--method takes these names; emcv-demo --list-methods prints them for scripts):\n" +
            demo::method_help_lines(2);
 }
 
 options parse_options(const std::vector<std::string>& args) {
     options o;
+    std::string sampling_flag;  // --spp-budget or --target-variance, once seen
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& flag = args[i];
         if (flag == "--help" || flag == "-h") {
@@ -60,7 +62,8 @@ options parse_options(const std::vector<std::string>& args) {
         }
         if (flag.rfind("--", 0) != 0) throw usage_error("unexpected argument '" + flag + "'");
         static const char* const known[] = {"--scene", "--method", "--size", "--frames", "--seed", "--sss-scale",
-                                            "--heatmaps", "--define", "--heatmap-dir"};
+                                            "--heatmaps", "--define", "--spp-budget", "--target-variance",
+                                            "--heatmap-dir"};
         if (std::find(std::begin(known), std::end(known), flag) == std::end(known))
             throw usage_error("unknown option '" + flag + "'");
         if (i + 1 >= args.size()) throw usage_error(flag + ": missing value");
@@ -94,6 +97,12 @@ options parse_options(const std::vector<std::string>& args) {
             } catch (const demo::tunable_error& e) {
                 throw usage_error(e.what());
             }
+        } else if (flag == "--spp-budget" || flag == "--target-variance") {
+            try {
+                demo::add_sampling_flag(o.defines, flag, value, sampling_flag);
+            } catch (const demo::tunable_error& e) {
+                throw usage_error(e.what());
+            }
         } else if (flag == "--heatmaps") {
             for (const std::string& f : split(value)) o.heatmap_frames.push_back(static_cast<int>(parse_integer(flag, f, 0, 100000)));
         } else {  // --heatmap-dir, the last of `known`
@@ -103,6 +112,11 @@ options parse_options(const std::vector<std::string>& args) {
     if (o.help) return o;
     if (o.methods.empty()) throw usage_error("--method: required");
     if (!o.heatmap_frames.empty() && o.heatmap_dir.empty()) throw usage_error("--heatmaps needs --heatmap-dir DIR");
+    try {
+        demo::check_tunables(o.defines);
+    } catch (const demo::tunable_error& e) {
+        throw usage_error(e.what());
+    }
     return o;
 }
 

@@ -13,6 +13,7 @@
 
 #include "gl/debug.hpp"
 #include "render/targets.hpp"
+#include "render/tunables.hpp"
 
 #include <string>
 
@@ -50,12 +51,17 @@ history_layout checked_layout(const method& m) {
 
 history::history(const method& m, int width, int height, const gl::preprocess_options& shaders,
                  const std::filesystem::path& shader_dir)
-    : layout_(checked_layout(m)), width_(width), height_(height) {
+    : layout_(checked_layout(m)), budget_mode_(sampling_mode_of(shaders.defines).budget), width_(width), height_(height) {
     if (width < 1 || height < 1) throw std::runtime_error("adaptive history: empty size");
     const std::filesystem::path dir = shader_dir / "adaptive";
     const gl::preprocess_options options = with_method_define(shaders, row_of(m));
     samples_program_ = gl::program::compute(dir / "samples.comp.glsl", options);
     update_program_ = gl::program::compute(dir / "update.comp.glsl", options);
+    if (budget_mode_) budget_program_ = gl::program::compute(dir / "budget.comp.glsl", options);
+    // Zeroed: no histogram yet (the first frame's pixels have no variance and take B), lambda 0.
+    budget_ = gl::buffer::create();
+    const emcv::port::EmcvBudgetBlock empty{};
+    glNamedBufferStorage(budget_.id(), sizeof empty, &empty, GL_DYNAMIC_STORAGE_BIT);
     for (int i = 0; i < 2; ++i) {
         a_[static_cast<std::size_t>(i)] = make_cleared_target(format_a(layout_), width, height);
         // The second texture exists only where the layout has one (the EMCM); the others allocate nothing more.
@@ -67,9 +73,24 @@ history::history(const method& m, int width, int height, const gl::preprocess_op
     prev_material_ = make_cleared_target(GL_R8UI, width, height);  // 0 = background: every pixel starts fresh
 }
 
+void history::record_budget() {
+    if (!budget_mode_) throw std::logic_error("adaptive history: the budget pass runs in budget mode only");
+    budget_program_.use();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMCV_ADAPTIVE_BUDGET, budget_.id());
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+emcv::port::EmcvBudgetBlock history::read_budget() const {
+    emcv::port::EmcvBudgetBlock b{};
+    glGetNamedBufferSubData(budget_.id(), 0, sizeof b, &b);
+    return b;
+}
+
 void history::record_samples() {
     const std::size_t cur = static_cast<std::size_t>(current_), prev = 1 - cur;
     samples_program_.use();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMCV_ADAPTIVE_BUDGET, budget_.id());
     glBindTextureUnit(EMCV_ADAPTIVE_TEX_HISTORY_PREV_A, a_[prev].id());
     glBindTextureUnit(EMCV_ADAPTIVE_TEX_HISTORY_PREV_B, layout_ == history_layout::emcm2 ? b_[prev].id() : a_[prev].id());
     glBindTextureUnit(EMCV_ADAPTIVE_TEX_PREV_DEPTH, prev_depth_.id());
@@ -83,16 +104,18 @@ void history::record_samples() {
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
-void history::record_update(GLuint scattered) {
+void history::record_update(GLuint scattered, GLuint taken) {
     const std::size_t cur = static_cast<std::size_t>(current_);
     update_program_.use();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMCV_ADAPTIVE_BUDGET, budget_.id());
     glBindTextureUnit(EMCV_RENDER_TEX_SSS_IN, scattered);
     glBindImageTexture(EMCV_ADAPTIVE_IMG_HISTORY_A, a_[cur].id(), 0, GL_FALSE, 0, GL_READ_WRITE, format_a(layout_));
     if (layout_ == history_layout::emcm2)
         glBindImageTexture(EMCV_ADAPTIVE_IMG_HISTORY_B, b_[cur].id(), 0, GL_FALSE, 0, GL_READ_WRITE, format_b);
-    glBindImageTexture(EMCV_ADAPTIVE_IMG_SAMPLES, samples_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindImageTexture(EMCV_RENDER_IMG_COUNT, taken, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
     glDispatchComputeIndirect(0);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                    GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
 void history::end_frame(GLuint depth, GLuint normal, GLuint material, bool updated) {

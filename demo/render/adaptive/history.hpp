@@ -2,8 +2,11 @@
 // emcv::demo::adaptive::history — the GPU side of the adaptive methods spvg, cv and cv-notex: their per-pixel
 // history textures (ping-pong), last frame's G-buffer for the reprojection test, the per-pixel sample-count
 // texture the burley pass reads, and the two passes around it (shaders/adaptive):
-//   adaptive-samples  before sss-burley: reproject + validate last frame's history, write N
-//   adaptive-update   after sss-burley: push this frame's (f, G) into the history
+//   adaptive-samples  before sss-burley: reproject + validate last frame's history, write N (budget mode:
+//                     the per-sample variance, added to the sigma histogram)
+//   adaptive-budget   budget mode only: solve the scale of N = clamp(lambda sigma, ...) from that histogram
+//                     (include/emcv/port/budget.h); the burley pass computes N with it
+//   adaptive-update   after sss-burley: push this frame's (f, G) into the history as a batch of N
 // Layouts and choices: include/emcv/port/history.h and docs/renderer.md. Created only for an adaptive
 // method, so the other methods allocate nothing of this.
 #pragma once
@@ -19,6 +22,8 @@
 #include "gl/image_io.hpp"
 #include "gl/program.hpp"
 #include "render/method.hpp"
+
+#include <emcv/port/budget.h>
 
 namespace emcv::demo::adaptive {
 
@@ -39,13 +44,21 @@ public:
             const std::filesystem::path& shader_dir);
 
     history_layout layout() const noexcept { return layout_; }
+    /// Whether the shader options select budget mode (sampling_mode_of their defines).
+    bool budget_mode() const noexcept { return budget_mode_; }
+
+    /// The adaptive-budget pass (budget mode only; throws std::logic_error otherwise).
+    void record_budget();
+    /// The budget block as the last solve left it (lambda, planned total); tests and diagnostics.
+    emcv::port::EmcvBudgetBlock read_budget() const;
 
     /// The adaptive-samples pass. Expects what the renderer's SSS passes expect bound (frame UBO, materials,
     /// tile list as the GL_DISPATCH_INDIRECT_BUFFER, G-buffer and motion textures at their render slots).
     /// Binds the samples image at EMCV_ADAPTIVE_IMG_SAMPLES, where the burley pass reads N.
     void record_samples();
-    /// The adaptive-update pass; `scattered` is the burley output (RGBA16F), bound at EMCV_RENDER_TEX_SSS_IN.
-    void record_update(GLuint scattered);
+    /// The adaptive-update pass; `scattered` is the burley output (RGBA16F), bound at EMCV_RENDER_TEX_SSS_IN,
+    /// `taken` the samples it took per pixel (R32UI, bound at EMCV_RENDER_IMG_COUNT).
+    void record_update(GLuint scattered, GLuint taken);
     /// End of every frame of the method: keeps this frame's G-buffer (depth R32F, normal RGBA16F, material
     /// R8UI) for the next reprojection and swaps the histories. A frame without SSS pass leaves the history
     /// unknown, so the next frame starts fresh everywhere.
@@ -64,8 +77,10 @@ public:
 
 private:
     history_layout layout_;
+    bool budget_mode_;
     int width_, height_;
-    gl::program samples_program_, update_program_;
+    gl::program samples_program_, update_program_, budget_program_;
+    gl::buffer budget_;  // EmcvBudgetBlock: allocated in every mode (the passes declare it), used in budget mode
     std::array<gl::texture_2d, 2> a_, b_;  // ping-pong: [current_] is this frame's
     int current_ = 0;
     gl::texture_2d samples_, prev_depth_, prev_normal_, prev_material_;

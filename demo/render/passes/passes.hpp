@@ -14,6 +14,7 @@ void gbuffer(const frame_context& c);
 void shadow(const frame_context& c, const planned_pass& p);
 void lighting(const frame_context& c);
 void sss_tiles(const frame_context& c);
+void sss_adaptive_budget(const frame_context& c);
 void sss_adaptive_samples(const frame_context& c);
 void sss_burley(const frame_context& c);
 void sss_adaptive_update(const frame_context& c);

@@ -35,6 +35,10 @@ void sss_tiles(const frame_context& c) {
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
+void sss_adaptive_budget(const frame_context& c) {
+    c.history->record_budget();
+}
+
 void sss_adaptive_samples(const frame_context& c) {
     c.history->record_samples();
 }
@@ -50,7 +54,7 @@ void sss_burley(const frame_context& c) {
 }
 
 void sss_adaptive_update(const frame_context& c) {
-    c.history->record_update(c.res.sss_out.id());
+    c.history->record_update(c.res.sss_out.id(), c.res.counts.id());
 }
 
 void sss_separable(const frame_context& c, int direction) {

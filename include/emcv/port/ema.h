@@ -78,8 +78,11 @@ EMCV_FN float emcv_comoment_step(float c, float r, float outer, float di, float 
     return clamp(cn, -emcv_float_max(), emcv_float_max());
 }
 
-/// Adds the pair x = (f, G) with weight eta in (0, 1] (supp. Eq. 21). Returns false when x is not finite.
-EMCV_FN bool emcv_emcm2_push(EMCV_INOUT(EmcvEmcm2) s, EMCV_IN(vec2) x, float eta) {
+/// Adds the pair x = (f, G), the mean of a batch of n samples, with weight eta in (0, 1]: the comoments grow by
+/// n d d^T instead of d d^T (outer = (1 - r) n), so that they estimate the per-sample covariance whatever
+/// n was (supp. Eq. 25-27: a mean of n samples has 1/n of the per-sample covariance; docs/renderer.md derives
+/// the expectation). n = 1 is supp. Eq. 21 exactly, bit for bit. Returns false when x is not finite.
+EMCV_FN bool emcv_emcm2_push_batch(EMCV_INOUT(EmcvEmcm2) s, EMCV_IN(vec2) x, float eta, float n) {
     if (!emcv_is_finite(x.x) || !emcv_is_finite(x.y)) {
         s.rejected = s.rejected + 1u;
         return false;
@@ -91,7 +94,7 @@ EMCV_FN bool emcv_emcm2_push(EMCV_INOUT(EmcvEmcm2) s, EMCV_IN(vec2) x, float eta
         s.reseeded = s.reseeded + 1u;
     }
     float r = s.count == 0u ? 1.0f : eta;  // the first sample seeds the mean, Cov = 0
-    float outer = 1.0f - r;
+    EMCV_PRECISE float outer = (1.0f - r) * n;
     float m0 = s.mean.x;
     float m1 = s.mean.y;
     float d0 = emcv_mean_step(m0, x.x, r);
@@ -101,6 +104,11 @@ EMCV_FN bool emcv_emcm2_push(EMCV_INOUT(EmcvEmcm2) s, EMCV_IN(vec2) x, float eta
                  emcv_comoment_step(s.cov.z, r, outer, d1, d1));
     s.count = s.count + 1u;
     return true;
+}
+
+/// Adds the pair x = (f, G) with weight eta in (0, 1] (supp. Eq. 21). Returns false when x is not finite.
+EMCV_FN bool emcv_emcm2_push(EMCV_INOUT(EmcvEmcm2) s, EMCV_IN(vec2) x, float eta) {
+    return emcv_emcm2_push_batch(s, x, eta, 1.0f);
 }
 
 /// An empty moving mean/variance.
@@ -119,9 +127,10 @@ EMCV_FN bool emcv_moving_stats_valid(EMCV_IN(EmcvMovingStats) s) {
     return emcv_is_finite(s.mean) && s.variance >= 0.0f && s.variance <= emcv_float_max();
 }
 
-/// mu' = mu + r (x - mu), var' = var + r (((1 - r) d) d - var); r = 1 on the first sample, eta afterwards
-/// (emcv::moving_stats = emcm<T, 1>, same operations).
-EMCV_FN bool emcv_moving_stats_push(EMCV_INOUT(EmcvMovingStats) s, float x, float eta) {
+/// Adds x, the mean of a batch of n samples: mu' = mu + r (x - mu), var' = var + r (((1 - r) n d) d - var);
+/// r = 1 on the first sample, eta afterwards. n = 1 is emcv::moving_stats (= emcm<T, 1>), same operations;
+/// n scales the variance to a per-sample one as in emcv_emcm2_push_batch.
+EMCV_FN bool emcv_moving_stats_push_batch(EMCV_INOUT(EmcvMovingStats) s, float x, float eta, float n) {
     if (!emcv_is_finite(x)) {
         s.rejected = s.rejected + 1u;
         return false;
@@ -133,13 +142,19 @@ EMCV_FN bool emcv_moving_stats_push(EMCV_INOUT(EmcvMovingStats) s, float x, floa
         s.reseeded = s.reseeded + 1u;
     }
     float r = s.count == 0u ? 1.0f : eta;
-    float outer = 1.0f - r;
+    EMCV_PRECISE float outer = (1.0f - r) * n;
     float m = s.mean;
     float d = emcv_mean_step(m, x, r);
     s.mean = m;
     s.variance = emcv_comoment_step(s.variance, r, outer, d, d);
     s.count = s.count + 1u;
     return true;
+}
+
+/// mu' = mu + r (x - mu), var' = var + r (((1 - r) d) d - var); r = 1 on the first sample, eta afterwards
+/// (emcv::moving_stats = emcm<T, 1>, same operations).
+EMCV_FN bool emcv_moving_stats_push(EMCV_INOUT(EmcvMovingStats) s, float x, float eta) {
+    return emcv_moving_stats_push_batch(s, x, eta, 1.0f);
 }
 
 EMCV_PORT_END

@@ -1,28 +1,40 @@
 // SPDX-License-Identifier: MIT
 // emcv/port/history.h — the adaptive SSS methods' per-pixel history (spvg, cv, cv-notex) in the shared
-// C++/GLSL dialect (fp32): what a history texel holds, when it may be reused, and the sample count it asks for.
+// C++/GLSL dialect (fp32): what a history texel holds, when it may be reused, the per-sample variance it
+// estimates and the sample count that variance asks for.
 //
-// ABOUT      docs/renderer.md documents each layout and the choices (the per-pixel study, emcv-cvstudy):
-//              spvg, cv-notex  one RGBA16F texel: (mean, variance / target, count, 0) of the tracked scalar
-//                              (spvg: gamma-space luminance f; cv-notex: the residual f - G, alpha = 1).
-//                              The variance is stored divided by the target so that what decides N stays far
-//                              above binary16's smallest normal (6.1e-5; a variance under it read as 0 would
-//                              give N = 0 under n_min = 0).
+// ABOUT      docs/renderer.md documents each layout, the derivations and the choices:
+//              spvg, cv-notex  one RGBA16F texel: (mean, per-sample comoment / EMCV_HISTORY_VARIANCE_UNIT,
+//                              count, 0) of the tracked scalar (spvg: gamma-space luminance f; cv-notex: the
+//                              residual f - G, alpha = 1). The variance is stored in a fixed unit so that it
+//                              stays far above binary16's smallest normal (6.1e-5) whatever the target.
 //              cv              RGBA32F (C_ff, C_fG, C_GG, count) + RG32F (mean_f, mean_G): the covariances stay
 //                              fp32 because C_ff - C_fG^2 / C_GG cancels (binary16 covariances gave N = 0 on
 //                              0.2% of flicker frames in the study); the means too, because G is an in-frame
 //                              constant: a mean of G rounded to half makes a static G push G - half(G) every
 //                              frame, a phantom C_GG and alpha (measured on `static`).
+//            Per-sample variance (supp. Eq. 25-27): a frame's output is the mean of its N_t samples, so the
+//            history pushes it as a batch of N_t (port/ema.h, *_push_batch) and its comoments estimate the
+//            variance of one sample, not of the N-sample output: the count no longer feeds back into its own
+//            input. The EMCM's steady-state bias 2 (1 - eta) / (2 - eta) is divided out
+//            (emcv_history_unbias).
+//            Two ways to turn it into counts, the same for every method:
+//              quality target  N = ceil(sigma^2 / EMCV_HISTORY_TARGET), clamped to [N_MIN, N_MAX]: the output's
+//                              variance lands on the target (SPVG's intent, calibrated);
+//              budget          a mean of EMCV_HISTORY_SPP_BUDGET samples per SSS pixel, N proportional to sigma
+//                              (port/budget.h), the allocation of least mean squared error.
 //            The count saturates at EMCV_HISTORY_MAX_COUNT (exact in binary16). A texel that is not finite, has
 //            a negative variance or count, is refused: the pixel restarts (never spreads NaN/Inf).
-//            A history younger than two frames has no variance yet and asks for n_max (as on a reset), not
-//            for the 0 that n_min = 0 would give.
-// USAGE      EmcvMovingStats s; bool ok = emcv_history_decode_stats(texel, s);  int n = emcv_history_count_spvg(s);
-// REFERENCES Xie & Olano 2021 (Xie & Olano 2021, section 4-5); SPVG 2020 (eta 0.2, N = clamp(var / 1e-4, 8, 64)).
+//            A history younger than two frames has no variance yet: it asks for N_MAX under a quality target
+//            (as on a reset) and for the budget B itself under a budget (the uniform share: no information).
+// USAGE      EmcvMovingStats s; bool ok = emcv_history_decode_stats(texel, s);
+//            int n = emcv_history_count_quality(emcv_history_sigma2_moving(s, EMCV_HISTORY_ETA_MOVING), ...);
+// REFERENCES Xie & Olano 2021 (section 4-5, supp. Eq. 21, 25-27); SPVG 2020 (eta 0.2, target 1e-4, N <= 64).
 #ifndef EMCV_PORT_HISTORY_H
 #define EMCV_PORT_HISTORY_H
 
 #include "port.h"
+#include "budget.h"
 #include "cv.h"
 #include "ema.h"
 #include "samples.h"
@@ -30,30 +42,34 @@
 EMCV_PORT_BEGIN
 
 // Tunables: each may be set before this header is included (`#define NAME value`, or the renderer's
-// `--define NAME=VALUE`, which demo/render/tunables.cpp validates against the ranges given here).
+// `--define NAME=VALUE`, which demo/render/tunables.cpp validates against the ranges given here). None is
+// tuned on a scene: docs/renderer.md says where each comes from.
 
-/// SPVG's target variance of the gamma-space luminance. Range: (0, 1].
+/// Quality-target mode: the variance of a pixel's output (gamma-space luminance) the count aims at; SPVG's
+/// 1e-4. Range: (0, 1].
 #ifndef EMCV_HISTORY_TARGET
 #define EMCV_HISTORY_TARGET 1.0e-4f
 #endif
-/// The most samples a pixel takes in a frame. Range: [1, 1024] integer, >= every N_MIN.
+/// Budget mode when > 0: the mean samples per SSS pixel and frame, spent in proportion to sigma; 0 selects the
+/// quality target. Range: [0, N_MAX].
+#ifndef EMCV_HISTORY_SPP_BUDGET
+#define EMCV_HISTORY_SPP_BUDGET 0.0f
+#endif
+/// The most samples a pixel takes in a frame (SPVG's 64). Range: [1, 1024] integer, >= N_MIN.
 #ifndef EMCV_HISTORY_N_MAX
 #define EMCV_HISTORY_N_MAX 64
 #endif
-/// spvg's fewest samples per SSS pixel. Range: [0, N_MAX] integer.
-#ifndef EMCV_HISTORY_SPVG_N_MIN
-#define EMCV_HISTORY_SPVG_N_MIN 8
+/// The fewest samples a pixel whose kernel is wider than a pixel takes: 1, so that every such pixel's history
+/// keeps seeing its noise (a pixel at 0 would push no sample and never learn it needs one).
+/// Range: [1, N_MAX] integer.
+#ifndef EMCV_HISTORY_N_MIN
+#define EMCV_HISTORY_N_MIN 1
 #endif
-/// The control-variate methods' fewest samples where the kernel is wider than a pixel (cv, cv-notex).
-/// Range: [0, N_MAX] integer.
-#ifndef EMCV_HISTORY_RESIDUAL_N_MIN
-#define EMCV_HISTORY_RESIDUAL_N_MIN EMCV_HISTORY_SPVG_N_MIN
-#endif
-/// SPVG's moving mean/variance weight (spvg, cv-notex). Range: (0, 1].
+/// SPVG's moving mean/variance weight (spvg, cv-notex). Range: (0, 0.5].
 #ifndef EMCV_HISTORY_ETA_MOVING
 #define EMCV_HISTORY_ETA_MOVING 0.2f
 #endif
-/// The EMCM weight of cv (the paper's; chosen by the study, docs/renderer.md). Range: (0, 1].
+/// The EMCM weight of cv (the paper's). Range: (0, 0.5].
 #ifndef EMCV_HISTORY_ETA_EMCM
 #define EMCV_HISTORY_ETA_EMCM 0.05f
 #endif
@@ -61,6 +77,10 @@ EMCV_PORT_BEGIN
 #ifndef EMCV_HISTORY_MAX_COUNT
 #define EMCV_HISTORY_MAX_COUNT 1024u
 #endif
+
+/// The unit the RGBA16F texels store variances in (not a tunable: a storage scale, 1e-4 of a display
+/// luminance squared, so that variances from 1e-8 to 6 stay normal binary16 numbers).
+EMCV_FN float emcv_history_variance_unit() { return 1.0e-4f; }
 
 /// Gamma-space luminance (Rec. 709 weights, gamma 1/2.2) of a linear colour: the scalar SPVG tracks.
 /// `precise` and written out (not dot()): every shader that tracks this value must get the same bits, and a
@@ -71,22 +91,22 @@ EMCV_FN float emcv_gamma_luminance(EMCV_IN(vec3) linear_rgb) {
     return pow(max(y, 0.0f), 1.0f / 2.2f);
 }
 
-/// (mean, variance / target, count, 0) -> moving stats. False (and s reset) when the texel is poisoned:
+/// (mean, variance / unit, count, 0) -> moving stats. False (and s reset) when the texel is poisoned:
 /// not finite, a negative variance, a negative or fractional count.
 EMCV_FN bool emcv_history_decode_stats(EMCV_IN(vec4) texel, EMCV_OUT(EmcvMovingStats) s) {
     s = emcv_moving_stats_init();
     bool finite = emcv_is_finite(texel.x) && emcv_is_finite(texel.y) && emcv_is_finite(texel.z);
     if (!finite || texel.y < 0.0f || texel.z < 0.0f || texel.z != floor(texel.z)) return false;
     s.mean = texel.x;
-    s.variance = texel.y * EMCV_HISTORY_TARGET;
+    s.variance = texel.y * emcv_history_variance_unit();
     s.count = uint(texel.z);
     return true;
 }
 
-/// SPVG / cv-notex history texel: (mean, variance / EMCV_HISTORY_TARGET, count capped at
+/// SPVG / cv-notex history texel: (mean, variance / emcv_history_variance_unit(), count capped at
 /// EMCV_HISTORY_MAX_COUNT, 0), the inverse of emcv_history_decode_stats.
 EMCV_FN vec4 emcv_history_encode_stats(EMCV_IN(EmcvMovingStats) s) {
-    return vec4(s.mean, s.variance / EMCV_HISTORY_TARGET, float(min(s.count, EMCV_HISTORY_MAX_COUNT)), 0.0f);
+    return vec4(s.mean, s.variance / emcv_history_variance_unit(), float(min(s.count, EMCV_HISTORY_MAX_COUNT)), 0.0f);
 }
 
 /// cov_count = (C_ff, C_fG, C_GG, count), means = (mean_f, mean_G) -> EMCM. False (and s reset) when poisoned:
@@ -137,43 +157,61 @@ EMCV_FN bool emcv_history_sub_pixel(float widest_d_mm, float pixels_per_mm) {
     return EMCV_HISTORY_FOOTPRINT_RADIUS_PER_D * widest_d_mm * pixels_per_mm < 1.0f;
 }
 
-/// spvg: N = clamp(var / 1e-4, 8, 64); n_max until the history has two frames.
-EMCV_FN int emcv_history_count_spvg(EMCV_IN(EmcvMovingStats) s) {
-    if (s.count < 2u) return EMCV_HISTORY_N_MAX;
-    return emcv_sample_count(s.variance, EMCV_HISTORY_TARGET, EMCV_HISTORY_SPVG_N_MIN, EMCV_HISTORY_N_MAX);
+/// The exponential history's bias: at steady state with a constant batch size the comoment's expectation is
+/// 2 (1 - eta) / (2 - eta) of the per-sample variance (the weights' sum of squares, docs/renderer.md), so the
+/// estimate is the comoment times (2 - eta) / (2 (1 - eta)). eta in (0, 0.5].
+EMCV_FN float emcv_history_unbias(float eta) { return (2.0f - eta) / (2.0f * (1.0f - eta)); }
+
+/// What a pixel's per-sample variance slot holds when it has none: no variance yet (fewer than two frames;
+/// the pixel takes n_max under a quality target, B under a budget) ...
+EMCV_FN float emcv_history_no_variance() { return -1.0f; }
+/// ... or no samples at all (a sub-pixel kernel under a control-variate method).
+EMCV_FN float emcv_history_no_samples() { return -2.0f; }
+
+/// spvg, cv-notex: the per-sample variance of the tracked scalar, or emcv_history_no_variance() before two
+/// frames.
+EMCV_FN float emcv_history_sigma2_moving(EMCV_IN(EmcvMovingStats) s, float eta) {
+    if (s.count < 2u) return emcv_history_no_variance();
+    EMCV_PRECISE float v = s.variance * emcv_history_unbias(eta);
+    return v;
 }
 
-/// The control-variate methods' count from a residual variance: clamp(var / target, RESIDUAL_N_MIN, N_MAX),
-/// NaN -> N_MAX. The floor keeps a static scene sampled as SPVG samples it, so the gain comes from the residual
-/// variance staying low when the light changes; a variance of exactly 0 never means "no samples" (a history
-/// stored in half precision can repeat bit for bit), only a sub-pixel kernel does (emcv_history_sub_pixel).
-/// docs/renderer.md has the measurements behind both choices.
-EMCV_FN int emcv_history_count_residual(float residual_variance) {
-    return emcv_sample_count(residual_variance, EMCV_HISTORY_TARGET, EMCV_HISTORY_RESIDUAL_N_MIN, EMCV_HISTORY_N_MAX);
+/// cv: the per-sample variance of the residual f - alpha G at the EMCM's alpha, (C_ff - C_fG^2 / C_GG)
+/// unbiased (Eq. 31 with supp. Eq. 25-27), or emcv_history_no_variance() before two frames.
+EMCV_FN float emcv_history_sigma2_cv(EMCV_IN(EmcvEmcm2) s, float eta) {
+    if (s.count < 2u) return emcv_history_no_variance();
+    EMCV_PRECISE float v = emcv_cv_optimal_residual_variance_emcm2(s) * emcv_history_unbias(eta);
+    return v;
 }
 
-/// cv-notex: the moving variance of r = f - G (alpha = 1).
-EMCV_FN int emcv_history_count_notex(EMCV_IN(EmcvMovingStats) s) {
-    if (s.count < 2u) return EMCV_HISTORY_N_MAX;
-    return emcv_history_count_residual(s.variance);
+/// Quality target: N = ceil(sigma2 / target) clamped to [n_min, n_max]; n_max without a variance or with a
+/// NaN one; 0 for emcv_history_no_samples().
+EMCV_FN int emcv_history_count_quality(float sigma2, float target, int n_min, int n_max) {
+    if (sigma2 == emcv_history_no_samples()) return 0;
+    if (sigma2 < 0.0f) return n_max;
+    return emcv_sample_count(sigma2, target, n_min, n_max);
 }
 
-/// cv's floor while its history is settling after a light change (docs/renderer.md, "Settling after a change").
-/// Range: [0, N_MAX] integer; 0 (or anything up to RESIDUAL_N_MIN) turns the settling floor off.
-#ifndef EMCV_HISTORY_CV_SETTLE_N
-#define EMCV_HISTORY_CV_SETTLE_N 11
-#endif
+/// Budget: clamp(lambda sigma, n_min, n_max) rounded stochastically with u in [0, 1); the budget itself
+/// (clamped to n_max) without a variance or with a NaN one; 0 for emcv_history_no_samples().
+EMCV_FN int emcv_history_count_budget(float sigma2, float lambda, float budget, int n_min, int n_max, float u) {
+    if (sigma2 == emcv_history_no_samples()) return 0;
+    bool known = sigma2 >= 0.0f;  // false for no_variance and NaN
+    float x = known ? emcv_budget_share(lambda, sqrt(sigma2), float(n_min), float(n_max)) : min(budget, float(n_max));
+    return emcv_budget_round(x, u);
+}
 
-/// cv: Var(f - alpha G) = C_ff - C_fG^2 / C_GG from the EMCM (the joint optimum of N and alpha), with the
-/// settling floor while the light change still explains more of f's variance than the residual does
-/// (C_fG^2 / C_GG > the residual variance). A static light has C_GG = 0 and never settles.
-EMCV_FN int emcv_history_count_cv(EMCV_IN(EmcvEmcm2) s) {
-    if (s.count < 2u) return EMCV_HISTORY_N_MAX;
-    float residual = emcv_cv_optimal_residual_variance_emcm2(s);
-    int n = emcv_history_count_residual(residual);
-    EMCV_PRECISE float explained = s.cov.x - residual;
-    if (explained > residual) n = max(n, EMCV_HISTORY_CV_SETTLE_N);
-    return n;
+/// Whether the tunables select budget mode.
+EMCV_FN bool emcv_history_budget_mode() { return EMCV_HISTORY_SPP_BUDGET > 0.0f; }
+
+/// Quality-target mode's count under the tunables.
+EMCV_FN int emcv_history_count_target(float sigma2) {
+    return emcv_history_count_quality(sigma2, EMCV_HISTORY_TARGET, EMCV_HISTORY_N_MIN, EMCV_HISTORY_N_MAX);
+}
+
+/// Budget mode's count under the tunables.
+EMCV_FN int emcv_history_count_spend(float sigma2, float lambda, float u) {
+    return emcv_history_count_budget(sigma2, lambda, EMCV_HISTORY_SPP_BUDGET, EMCV_HISTORY_N_MIN, EMCV_HISTORY_N_MAX, u);
 }
 
 EMCV_PORT_END
