@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: MIT
 // The adaptive passes (shaders/adaptive through demo/render/adaptive/history) on llvmpipe over a hand-made
 // 16x8 G-buffer whose every input the test sets: flat SSS pixels at depth 2, no motion, albedo 1, exposure 1.
-//   parity       each frame's stored state equals the C++ estimator (emcv::moving_stats, emcv::emcm) restored
-//                from last frame's stored state and fed the same f and G (the GPU's own values, through a probe
-//                shader calling the same port function); the sample count equals the C++ rule.
+//   parity       each frame's stored state equals the port's estimator compiled as C++ (emcv_*_push_batch)
+//                restored from last frame's stored state and fed the same f, G and batch size N (varying per
+//                pixel and frame, 0 included: no push); the sample count equals the quality-target rule
+//                rebuilt from the library's own estimators (emcv::emcm, emcv::moving_stats,
+//                emcv::cv_optimal_residual_variance, emcv::sample_count) and the per-sample scaling.
 //   disocclusion a pixel whose material, depth or normal changed, or whose motion leads off screen, restarts.
 //   poison       a NaN/Inf/negative stored state is refused and restarted, and its neighbours are untouched.
 //
@@ -79,7 +81,7 @@ struct harness {
     emcv::gl::texture_2d depth = make_texture(GL_R32F), normal = make_texture(GL_RGBA16F),
                          albedo = make_texture(GL_RGBA16F), material = make_texture(GL_R8UI),
                          motion = make_texture(GL_RG16F), diffuse = make_texture(GL_RGBA16F),
-                         scattered = make_texture(GL_RGBA16F);
+                         scattered = make_texture(GL_RGBA16F), taken = make_texture(GL_R32UI);
     emcv::gl::buffer frame_ubo = emcv::gl::buffer::create(), materials = emcv::gl::buffer::create(),
                      stats = emcv::gl::buffer::create(), tiles = emcv::gl::buffer::create();
     emcv::gl::program probe = emcv::gl::program::compute(
@@ -91,6 +93,7 @@ struct harness {
     std::vector<glm::vec2> motions = std::vector<glm::vec2>(pixels, glm::vec2(0.0f));
 
     harness() {
+        set_taken(std::vector<std::uint32_t>(pixels, 1u));
         emcv::demo::gpu::frame_block f{};
         f.view = glm::mat4(1.0f);
         f.proj = glm::perspective(glm::radians(60.0f), float(width) / float(height), 0.1f, 100.0f);
@@ -154,6 +157,11 @@ struct harness {
         return out;
     }
 
+    /// The samples the burley pass took per pixel (what adaptive-update pushes each value as a batch of).
+    void set_taken(const std::vector<std::uint32_t>& n) {
+        glTextureSubImage2D(taken.id(), 0, 0, 0, width, height, GL_RED_INTEGER, GL_UNSIGNED_INT, n.data());
+    }
+
     /// One frame of the adaptive passes, as the renderer records them around its burley pass.
     void frame(history& h) {
         glBindBufferBase(GL_UNIFORM_BUFFER, frame_slot, frame_ubo.id());
@@ -168,7 +176,7 @@ struct harness {
         glBindTextureUnit(tex_motion, motion.id());
         glBindTextureUnit(tex_diffuse, diffuse.id());
         h.record_samples();
-        h.record_update(scattered.id());
+        h.record_update(scattered.id(), taken.id());
         h.end_frame(depth.id(), normal.id(), material.id(), true);
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
     }
@@ -195,14 +203,17 @@ void light_at(int frame, std::vector<float>& g, std::vector<float>& f) {
     }
 }
 
-/// The C++ count rule of include/emcv/port/history.h, written with the library's functions: SPVG's clamp of
-/// the tracked variance (the residual's for cv, cv-notex), and cv's settling floor while the variance the
-/// light change explains (C_ff minus the residual variance) exceeds the residual variance.
-int cpp_count(kind k, std::uint64_t count, float variance, float explained = 0.0f) {
+/// The quality-target count rebuilt from the library: the tracked variance (the residual's for cv, from the
+/// library's EMCM) is a per-sample one, unbiased by (2 - eta) / (2 (1 - eta)) (the exponential weights' sum of
+/// squares, docs/renderer.md), divided by the target; n_max before two frames.
+int cpp_count(std::uint64_t count, float variance, float eta) {
     if (count < 2) return EMCV_HISTORY_N_MAX;
-    const int n = emcv::sample_count(variance, EMCV_HISTORY_TARGET, 8, EMCV_HISTORY_N_MAX);
-    return k == kind::cv && explained > variance ? std::max(n, EMCV_HISTORY_CV_SETTLE_N) : n;
+    const float unbiased = variance * ((2.0f - eta) / (2.0f * (1.0f - eta)));
+    return emcv::sample_count(unbiased, EMCV_HISTORY_TARGET, EMCV_HISTORY_N_MIN, EMCV_HISTORY_N_MAX);
 }
+
+/// The batch size pixel i takes at `frame`: 0 (no push) to 6, different between neighbours and frames.
+std::uint32_t taken_at(std::size_t i, int frame) { return std::uint32_t((i * 3u + std::size_t(frame)) % 7u); }
 
 std::uint32_t bits(float x) {
     std::uint32_t b;
@@ -225,31 +236,37 @@ TEST_CASE("the GPU history equals the C++ estimators fed the same per-pixel valu
         for (int frame = 0; frame < 12; ++frame) {
             light_at(frame, g, f);
             hx.set_light(g, f);
+            std::vector<std::uint32_t> taken(pixels);
+            for (std::size_t i = 0; i < pixels; ++i) taken[i] = taken_at(i, frame);
+            hx.set_taken(taken);
             const std::vector<float> gt = hx.tracked(g), ft = hx.tracked(f);
             hx.frame(h);
             const std::vector<texel> now = h.read();
             const std::vector<std::uint32_t> n = hx.counts(h);
             for (std::size_t i = 0; i < pixels; ++i) {
-                INFO("frame " << frame << " pixel " << i);
+                INFO("frame " << frame << " pixel " << i << " batch " << taken[i]);
                 const texel& was = previous[i];
+                const float batch = float(taken[i]);
                 if (k == kind::cv) {
-                    // Restore the C++ EMCM from the stored state (the GPU's decode), push, compare.
+                    // The count from the library's EMCM restored from the stored state (the GPU's decode).
                     emcv::emcm<float, 2>::state_type s{};
                     s.count = static_cast<std::uint64_t>(was.a.w);
                     s.total_weight = s.count > 0 ? 1.0f : 0.0f;
                     s.mean = {was.b.x, was.b.y};
                     s.covariance = {was.a.x, was.a.y, was.a.z};
-                    emcv::emcm<float, 2> cpp(EMCV_HISTORY_ETA_EMCM, s);
-                    const float residual = emcv::cv_optimal_residual_variance(cpp);
-                    CHECK(cpp_count(k, cpp.count(), residual, cpp.variance(0) - residual) == int(n[i]));
-                    if (frame >= 8) CHECK(int(n[i]) >= EMCV_HISTORY_CV_SETTLE_N);  // settling after the switch
-                    cpp.push({ft[i], gt[i]});
-                    CHECK(bits(now[i].a.x) == bits(cpp.variance(0)));
-                    CHECK(bits(now[i].a.y) == bits(cpp.covariance(0, 1)));
-                    CHECK(bits(now[i].a.z) == bits(cpp.variance(1)));
-                    CHECK(now[i].a.w == float(cpp.count()));
-                    CHECK(bits(now[i].b.x) == bits(cpp.mean(0)));  // the means are fp32 (RG32F)
-                    CHECK(bits(now[i].b.y) == bits(cpp.mean(1)));
+                    const emcv::emcm<float, 2> lib(EMCV_HISTORY_ETA_EMCM, s);
+                    CHECK(cpp_count(lib.count(), emcv::cv_optimal_residual_variance(lib), EMCV_HISTORY_ETA_EMCM) ==
+                          int(n[i]));
+                    // The update: the port's batch push compiled as C++, from the same stored state.
+                    emcv::port::EmcvEmcm2 port;
+                    REQUIRE(emcv::port::emcv_history_decode_emcm2(was.a, was.b, port));
+                    if (batch > 0.0f) emcv::port::emcv_emcm2_push_batch(port, glm::vec2(ft[i], gt[i]), EMCV_HISTORY_ETA_EMCM, batch);
+                    CHECK(bits(now[i].a.x) == bits(port.cov.x));
+                    CHECK(bits(now[i].a.y) == bits(port.cov.y));
+                    CHECK(bits(now[i].a.z) == bits(port.cov.z));
+                    CHECK(now[i].a.w == float(port.count));
+                    CHECK(bits(now[i].b.x) == bits(port.mean.x));  // the means are fp32 (RG32F)
+                    CHECK(bits(now[i].b.y) == bits(port.mean.y));
                     // G is constant until the switch: no covariance with G may appear from the means' storage
                     // (RG16F means gave C_GG > 0 and a phantom alpha on a static light).
                     if (frame < 6) CHECK(now[i].a.z == 0.0f);
@@ -259,21 +276,26 @@ TEST_CASE("the GPU history equals the C++ estimators fed the same per-pixel valu
                     s.count = static_cast<std::uint64_t>(was.a.z);
                     s.total_weight = s.count > 0 ? 1.0f : 0.0f;
                     s.mean = {was.a.x};
-                    s.covariance = {was.a.y * EMCV_HISTORY_TARGET};
-                    emcv::moving_stats<float> cpp(EMCV_HISTORY_ETA_MOVING, s);
-                    CHECK(cpp_count(k, cpp.count(), cpp.variance()) == int(n[i]));
-                    cpp.push(k == kind::spvg ? ft[i] : emcv::cv_residual(ft[i], 1.0f, gt[i]));
-                    CHECK(half_ulps(now[i].a.x, half(cpp.mean())) <= 1);
-                    INFO("stored var / target: GPU " << now[i].a.y << ", C++ " << cpp.variance() / EMCV_HISTORY_TARGET);
-                    CHECK(half_ulps(now[i].a.y, half(cpp.variance() / EMCV_HISTORY_TARGET)) <= 1);
-                    CHECK(now[i].a.z == float(cpp.count()));
+                    s.covariance = {was.a.y * emcv::port::emcv_history_variance_unit()};
+                    const emcv::moving_stats<float> lib(EMCV_HISTORY_ETA_MOVING, s);
+                    CHECK(cpp_count(lib.count(), lib.variance(), EMCV_HISTORY_ETA_MOVING) == int(n[i]));
+                    emcv::port::EmcvMovingStats port;
+                    REQUIRE(emcv::port::emcv_history_decode_stats(was.a, port));
+                    const float x = k == kind::spvg ? ft[i] : emcv::cv_residual(ft[i], 1.0f, gt[i]);
+                    if (batch > 0.0f) emcv::port::emcv_moving_stats_push_batch(port, x, EMCV_HISTORY_ETA_MOVING, batch);
+                    const float unit = emcv::port::emcv_history_variance_unit();
+                    CHECK(half_ulps(now[i].a.x, half(port.mean)) <= 1);
+                    INFO("stored var / unit: GPU " << now[i].a.y << ", C++ " << port.variance / unit);
+                    CHECK(half_ulps(now[i].a.y, half(port.variance / unit)) <= 1);
+                    CHECK(now[i].a.z == float(port.count));
                 }
                 ++compared;
             }
             previous = now;
         }
         CHECK(compared == 12 * int(pixels));
-        CHECK((k == kind::cv ? previous[5].a.w : previous[5].a.z) == 12.0f);  // every frame was pushed
+        // Pixel 5 took no samples on the frames where (15 + frame) % 7 == 0 (frames 6): 11 pushes in 12 frames.
+        CHECK((k == kind::cv ? previous[5].a.w : previous[5].a.z) == 11.0f);
     }
     CHECK(messenger.error_count() == 0);
 }
