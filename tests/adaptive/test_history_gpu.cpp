@@ -261,6 +261,14 @@ TEST_CASE("the GPU history equals the C++ estimators fed the same per-pixel valu
                     emcv::port::EmcvEmcm2 port;
                     REQUIRE(emcv::port::emcv_history_decode_emcm2(was.a, was.b, port));
                     if (batch > 0.0f) emcv::port::emcv_emcm2_push_batch(port, glm::vec2(ft[i], gt[i]), EMCV_HISTORY_ETA_EMCM, batch);
+                    // Independently of the port: supp. Eq. 21 with the batch factor (supp. Eq. 25-27),
+                    // C_ff' = (1 - eta)(C_ff + eta N d^2), in double; fp32 rounding of a few operations stays
+                    // under 1e-5 relative.
+                    if (batch > 0.0f && port.count > 1) {
+                        const double d = double(ft[i]) - double(was.b.x), eta = EMCV_HISTORY_ETA_EMCM;
+                        const double expect = (1.0 - eta) * (double(was.a.x) + eta * double(batch) * d * d);
+                        CHECK(std::fabs(double(now[i].a.x) - expect) <= 1e-5 * expect + 1e-12);
+                    }
                     CHECK(bits(now[i].a.x) == bits(port.cov.x));
                     CHECK(bits(now[i].a.y) == bits(port.cov.y));
                     CHECK(bits(now[i].a.z) == bits(port.cov.z));
@@ -284,6 +292,13 @@ TEST_CASE("the GPU history equals the C++ estimators fed the same per-pixel valu
                     const float x = k == kind::spvg ? ft[i] : emcv::cv_residual(ft[i], 1.0f, gt[i]);
                     if (batch > 0.0f) emcv::port::emcv_moving_stats_push_batch(port, x, EMCV_HISTORY_ETA_MOVING, batch);
                     const float unit = emcv::port::emcv_history_variance_unit();
+                    // Independently of the port: var' = (1 - eta)(var + eta N d^2) (supp. Eq. 21, 25-27) in
+                    // double, against the stored binary16 value (relative step 2^-11).
+                    if (batch > 0.0f && port.count > 1) {
+                        const double d = double(x) - double(was.a.x), eta = EMCV_HISTORY_ETA_MOVING;
+                        const double expect = (1.0 - eta) * (double(was.a.y) * unit + eta * double(batch) * d * d);
+                        CHECK(std::fabs(double(now[i].a.y) * unit - expect) <= 1e-3 * expect + 1e-9);
+                    }
                     CHECK(half_ulps(now[i].a.x, half(port.mean)) <= 1);
                     INFO("stored var / unit: GPU " << now[i].a.y << ", C++ " << port.variance / unit);
                     CHECK(half_ulps(now[i].a.y, half(port.variance / unit)) <= 1);
