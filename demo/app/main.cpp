@@ -3,6 +3,7 @@
 // Order matters (nothing is written on bad input): parse every flag, load the scene, validate --out, and only
 // then create the GL context; outputs are created once the renderers exist.
 #include <algorithm>
+#include <cmath>
 #include <exception>
 #include <iostream>
 #include <optional>
@@ -90,13 +91,24 @@ int main(int argc, char** argv) {
         } else {
             const run_result result = run_headless(s, o, frames);
             std::vector<std::string> notes;
+            const sampling_mode mode = sampling_mode_of(o.defines);
+            const std::string cv = method{method::kind::cv}.name(), spvg = method{method::kind::spvg}.name();
+            // Under a budget B the adaptive methods are compared at equal cost with burley-B; under a quality
+            // target, cv with spvg (the paper's teaser).
+            const std::string baseline =
+                mode.budget && mode.value == std::floor(mode.value)
+                    ? method{method::kind::burley, static_cast<int>(mode.value)}.name()
+                    : spvg;
             if (const std::optional<int> change = first_light_change(s, frames)) {
-                const std::string cv = method{method::kind::cv}.name(), spvg = method{method::kind::spvg}.name();
-                if (std::optional<std::string> line = compare_after_change(result.rows, *change, cv, spvg))
+                if (std::optional<std::string> line = compare_after_change(result.rows, *change, cv, baseline))
                     notes.push_back(std::move(*line));
             }
+            if (mode.budget)
+                if (std::optional<std::string> line = compare_after_change(result.rows, 0, cv, baseline, 0))
+                    notes.push_back(std::move(*line));
             std::cout << "scene " << s.name << ", " << o.width << "x" << o.height << ", " << frames
-                      << " frames, seed " << o.seed << ", " << context.renderer() << '\n'
+                      << " frames, seed " << o.seed << ", adaptive sampling: " << mode.text() << ", "
+                      << context.renderer() << '\n'
                       << "times: GPU ms per frame (mean, p95) from frame 1 on (frame 0 is warm-up); spp: samples per SSS "
                          "pixel; PSNR: dB of the "
                          "display image against the reference's, mean over frames\n"

@@ -88,13 +88,13 @@ std::vector<method_summary> summarize(const std::vector<metrics_row>& rows, cons
 }
 
 std::optional<std::string> compare_after_change(const std::vector<metrics_row>& rows, int first_change,
-                                                const std::string& name, const std::string& baseline) {
+                                                const std::string& name, const std::string& baseline, int window) {
     struct window_means {
         int frames = 0;
         double spp = 0.0, sss_ms = 0.0;
         std::vector<std::optional<double>> psnr;
     };
-    const int end = first_change + switch_window_frames;
+    const int end = window > 0 ? first_change + window : std::numeric_limits<int>::max();
     auto means_of = [&](const std::string& method) {
         window_means m;
         for (const metrics_row& r : rows) {
@@ -125,11 +125,15 @@ std::optional<std::string> compare_after_change(const std::vector<metrics_row>& 
         std::snprintf(t, sizeof t, "%+.2f dB", *db_name - *db_baseline);
         gap = t;
     }
-    char line[320];
-    std::snprintf(line, sizeof line,
-                  "%s vs %s, frames %d-%d (from the first light change at frame %d): samples %s, SSS pass time "
-                  "%s, PSNR %s (%s %s, %s %s)",
-                  name.c_str(), baseline.c_str(), first_change, last, first_change,
+    char span[96];
+    if (window > 0)
+        std::snprintf(span, sizeof span, "frames %d-%d (from the first light change at frame %d)", first_change, last,
+                      first_change);
+    else
+        std::snprintf(span, sizeof span, "frames %d-%d (every frame)", first_change, last);
+    char line[400];
+    std::snprintf(line, sizeof line, "%s vs %s, %s: samples %s, SSS pass time %s, PSNR %s (%s %s, %s %s)",
+                  name.c_str(), baseline.c_str(), span,
                   ratio(cand.spp / cand.frames, base.spp / base.frames).c_str(),
                   ratio(cand.sss_ms / cand.frames, base.sss_ms / base.frames).c_str(), gap.c_str(), name.c_str(),
                   psnr_text(db_name).c_str(), baseline.c_str(), psnr_text(db_baseline).c_str());

@@ -39,13 +39,15 @@ std::vector<method_summary> summarize(const std::vector<metrics_row>& rows, cons
 /// frames from the switch).
 inline constexpr int switch_window_frames = 30;
 
-/// The summary's closing line: `name` (cv) against `baseline` (spvg) over the `switch_window_frames` frames
-/// from `first_change` (the first frame at which a light's intensity changes), cut at the last frame rendered.
+/// The summary's closing line: `name` (cv) against `baseline` (spvg, or burley-B at a budget of B) over the
+/// `window` frames from `first_change` (the first frame at which a light's intensity changes), cut at the last
+/// frame rendered; window 0: every frame from `first_change` on.
 /// Sample ratio (mean over frames of mean_spp), SSS-pass-time ratio (mean sss_ms) and PSNR gap (mean over
 /// frames of psnr_db, name minus baseline). Empty when either did not run, or no frame of either lies in the
 /// window.
 std::optional<std::string> compare_after_change(const std::vector<metrics_row>& rows, int first_change,
-                                                const std::string& name, const std::string& baseline);
+                                                const std::string& name, const std::string& baseline,
+                                                int window = switch_window_frames);
 
 /// The table, then each of `notes` on its own line (the cv vs spvg line after the switch).
 std::string format_summary(const std::vector<method_summary>& summaries, const std::vector<std::string>& notes = {});
