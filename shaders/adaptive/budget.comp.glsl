@@ -9,9 +9,6 @@
 
 #include "emcv/port/bindings.h"
 
-#ifndef EMCV_HISTORY_SPP_BUDGET
-#error "the renderer plans this pass in budget mode only (EMCV_HISTORY_SPP_BUDGET)"
-#endif
 #include "adaptive/budget_block.h"
 
 layout(local_size_x = EMCV_BUDGET_BINS) in;

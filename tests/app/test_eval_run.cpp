@@ -141,7 +141,7 @@ TEST_CASE("emcv-eval: --sss-scale shrinks the kernels under a pixel and cv takes
     for (const row& x : run_eval(args + " --sss-scale 0.001"))
         if (x.frame >= 2) shrunk[x.method] += x.mean_spp / 2.0;
     INFO("cv " << full["cv"] << " -> " << shrunk["cv"] << "; spvg " << full["spvg"] << " -> " << shrunk["spvg"]);
-    CHECK(full["cv"] >= 8.0);  // tiny.json's kernels cover pixels at this size
+    CHECK(full["cv"] >= 1.0);  // tiny.json's kernels cover pixels at this size: at least the floor N_MIN
     CHECK(shrunk["cv"] == 0.0);
-    CHECK(shrunk["spvg"] >= 8.0);
+    CHECK(shrunk["spvg"] >= 1.0);  // spvg has no control to stand in: it keeps sampling
 }

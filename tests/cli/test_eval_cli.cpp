@@ -42,7 +42,11 @@ TEST_CASE("emcv-eval: bad usage exits 2 and names the argument", "[cli][eval]") 
         {"--method spvg --heatmaps 1,x --heatmap-dir d", "--heatmaps: expected an integer in 0..100000, got 'x'"},
         {"--method spvg --heatmaps 1", "--heatmaps needs --heatmap-dir DIR"},
         {"--method spvg --define EMCV_BOGUS=1", "--define: unknown tunable 'EMCV_BOGUS'"},
-        {"--method spvg --define EMCV_HISTORY_ETA_EMCM=0", "EMCV_HISTORY_ETA_EMCM takes a number in (0, 1]"},
+        {"--method spvg --define EMCV_HISTORY_ETA_EMCM=0", "EMCV_HISTORY_ETA_EMCM takes a number in (0, 0.5]"},
+        {"--method spvg --spp-budget 8 --target-variance 1e-4", "cannot be combined with --spp-budget"},
+        {"--method spvg --spp-budget 0", "--spp-budget: expected a number in (0, 1024]"},
+        {"--method spvg --spp-budget 100", "exceeds EMCV_HISTORY_N_MAX (64)"},
+        {"--method spvg --target-variance 2", "--target-variance: expected a number in (0, 1]"},
         {"--method spvg --define", "--define: missing value"},
     });
     CHECK(emcv_cli_test::entries(dir) == 0);

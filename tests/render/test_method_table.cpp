@@ -112,7 +112,7 @@ TEST_CASE("define values are validated and written as GLSL literals of the tunab
     CHECK(parse_define("EMCV_HISTORY_N_MAX=32") == std::pair<std::string, std::string>{"EMCV_HISTORY_N_MAX", "32"});
     CHECK(parse_define("EMCV_HISTORY_MAX_COUNT=512").second == "512u");
     CHECK(parse_define("EMCV_HISTORY_TARGET=2.5e-5").second == "2.500000000e-05f");
-    CHECK(parse_define("EMCV_HISTORY_ETA_EMCM=1").second == "1.000000000e+00f");
+    CHECK(parse_define("EMCV_HISTORY_ETA_EMCM=0.5").second == "5.000000000e-01f");
     const auto fails = [](const char* text, const char* why) {
         INFO(text);
         CHECK_THROWS_WITH(parse_define(text), ContainsSubstring(why));
@@ -127,16 +127,28 @@ TEST_CASE("define values are validated and written as GLSL literals of the tunab
     fails("EMCV_HISTORY_TARGET=0", "a number in (0, 1]");
     fails("EMCV_HISTORY_TARGET=1e400", "a number in (0, 1]");
     fails("EMCV_HISTORY_TARGET=nan", "a number in (0, 1]");
-    fails("EMCV_HISTORY_ETA_EMCM=0.05;", "a number in (0, 1]");
+    fails("EMCV_HISTORY_ETA_EMCM=0.05;", "a number in (0, 0.5]");
+    fails("EMCV_HISTORY_ETA_EMCM=0.6", "a number in (0, 0.5]");  // the unbias factor needs eta < 1
     std::vector<std::pair<std::string, std::string>> defines;
     add_define(defines, "EMCV_HISTORY_N_MAX=32");
-    add_define(defines, "EMCV_HISTORY_SPVG_N_MIN=4");
+    add_define(defines, "EMCV_HISTORY_N_MIN=4");
     add_define(defines, "EMCV_HISTORY_N_MAX=16");  // a later value wins
-    CHECK(defines == std::vector<std::pair<std::string, std::string>>{{"EMCV_HISTORY_SPVG_N_MIN", "4"},
+    CHECK(defines == std::vector<std::pair<std::string, std::string>>{{"EMCV_HISTORY_N_MIN", "4"},
                                                                         {"EMCV_HISTORY_N_MAX", "16"}});
+    CHECK(tunable_value(defines, "EMCV_HISTORY_N_MAX") == 16.0);
+    CHECK(tunable_value(defines, "EMCV_HISTORY_ETA_EMCM") == double(0.05f));  // the header's default
+    CHECK_FALSE(sampling_mode_of(defines).budget);
+    add_define(defines, "EMCV_HISTORY_N_MIN=20");
+    CHECK_THROWS_WITH(check_tunables(defines), ContainsSubstring("EMCV_HISTORY_N_MIN (20) exceeds EMCV_HISTORY_N_MAX (16)"));
+    std::string seen;
+    add_sampling_flag(defines, "--spp-budget", "12", seen);
+    CHECK(sampling_mode_of(defines).budget);
+    CHECK(sampling_mode_of(defines).value == 12.0);
+    CHECK_THROWS_WITH(add_sampling_flag(defines, "--target-variance", "1e-4", seen),
+                      ContainsSubstring("cannot be combined with --spp-budget"));
 }
 
-TEST_CASE("a --define reaches the shaders: spvg's floor and cap move the sample counts") {
+TEST_CASE("a --define reaches the shaders: the floor and cap move spvg's sample counts") {
     emcv::gl::context ctx = emcv::test::context_or_skip();
     emcv::gl::debug_messenger messenger;
     const scene s = load_scene_argument("static");
@@ -150,12 +162,13 @@ TEST_CASE("a --define reaches the shaders: spvg's floor and cap move the sample 
         for (int frame = 0; frame < 4; ++frame) last = r.render(frame);
         return last;
     };
-    // Defaults: a static light sits at spvg's floor 8 once the history has two frames.
+    // Defaults: a static light's per-sample variance over the target stays well under 20 once the history has
+    // two frames.
     const frame_stats plain = spp({});
     CHECK(plain.mean_spp < 20.0);
-    const frame_stats floor20 = spp({parse_define("EMCV_HISTORY_SPVG_N_MIN=20")});
+    const frame_stats floor20 = spp({parse_define("EMCV_HISTORY_N_MIN=20")});
     CHECK(floor20.mean_spp >= 20.0);
-    const frame_stats cap4 = spp({parse_define("EMCV_HISTORY_N_MAX=4"), parse_define("EMCV_HISTORY_SPVG_N_MIN=2")});
+    const frame_stats cap4 = spp({parse_define("EMCV_HISTORY_N_MAX=4"), parse_define("EMCV_HISTORY_N_MIN=2")});
     CHECK(cap4.max_spp <= 4);
     CHECK(cap4.max_spp >= 2);
     CHECK(messenger.error_count() == 0);
