@@ -1,0 +1,125 @@
+// SPDX-License-Identifier: MIT
+// The variation scenes (demo/scenes/variations/): light-off with one thing changed each. They exist to measure
+// methods on events they were not tuned on, so the test pins what each promises (the key light's curve, the
+// camera) and that everything else is light-off's, rather than anything about how a method fares on them.
+#include <catch2/catch_test_macros.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scene/load.hpp"
+#include "scene_test_support.hpp"
+
+using namespace emcv::demo;
+using emcv::test::source_dir;
+
+namespace {
+
+struct variation {
+    std::string name;
+    int frames;
+    bool camera_moves;
+    std::vector<std::pair<int, float>> key;  ///< (frame, the key light's intensity there)
+};
+
+/// The key light's intensity at each frame from a list of (first frame, value), held until the next entry.
+std::vector<std::pair<int, float>> held(int frames, std::vector<std::pair<int, float>> changes) {
+    std::vector<std::pair<int, float>> out;
+    std::size_t next = 0;
+    float v = changes.front().second;
+    for (int f = 0; f < frames; ++f) {
+        while (next < changes.size() && changes[next].first <= f) v = changes[next++].second;
+        out.emplace_back(f, v);
+    }
+    return out;
+}
+
+/// Every frame of each scene, so that an event one frame early or late, or a missing frame of the fade, fails.
+std::vector<variation> variations() {
+    std::vector<std::pair<int, float>> fade;
+    for (int f = 0; f < 60; ++f)
+        fade.emplace_back(f, f <= 20 ? 1.5f : f >= 50 ? 0.0f : 0.05f * static_cast<float>(50 - f));
+    return {
+        {"switch-half", 60, false, held(60, {{0, 1.5f}, {30, 0.75f}})},
+        {"switch-dim", 60, false, held(60, {{0, 1.5f}, {30, 1.2f}})},
+        {"switch-on", 60, false, held(60, {{0, 0.0f}, {30, 1.5f}})},
+        {"fade", 60, false, fade},
+        {"burst-1", 60, false, held(60, {{0, 1.5f}, {30, 0.0f}, {31, 1.5f}})},
+        {"burst-3", 60, false, held(60, {{0, 1.5f}, {30, 0.0f}, {33, 1.5f}})},
+        {"camera-switch", 60, true, held(60, {{0, 1.5f}, {30, 0.0f}})},
+        {"long-off", 330, false, held(330, {{0, 1.5f}, {30, 0.0f}})},
+    };
+}
+
+const light& named(const scene& s, const std::string& name) {
+    const auto it = std::find_if(s.lights.begin(), s.lights.end(), [&](const light& l) { return l.name == name; });
+    INFO(s.name << ": light " << name);
+    REQUIRE(it != s.lights.end());
+    return *it;
+}
+
+}  // namespace
+
+TEST_CASE("each variation scene is light-off with its key light's curve or its camera changed as its name says") {
+    const scene base = load_scene_argument("light-off");
+    const auto dir = source_dir() / "demo" / "scenes" / "variations";
+    for (const variation& v : variations()) {
+        INFO(v.name);
+        const scene s = load_scene(dir / (v.name + ".json"));
+        CHECK(s.name == v.name);
+        CHECK(!s.description.empty());
+        CHECK(s.frames == v.frames);
+        std::ifstream in(dir / (v.name + ".json"));
+        CHECK(nlohmann::json::parse(in).value("$schema", "") == "../scene.schema.json");
+
+        // light-off's statuette, material and fill light.
+        CHECK(s.mm_per_unit == base.mm_per_unit);
+        REQUIRE(s.meshes.size() == base.meshes.size());
+        CHECK(s.meshes[0].vertices.size() == base.meshes[0].vertices.size());
+        CHECK(s.meshes[0].indices == base.meshes[0].indices);
+        REQUIRE(s.materials.size() == 1u);
+        CHECK(s.materials[0].albedo == base.materials[0].albedo);
+        CHECK(s.materials[0].mean_free_path_mm == base.materials[0].mean_free_path_mm);
+        REQUIRE(s.lights.size() == 2u);
+        const light& fill = named(s, "fill");
+        CHECK(fill.intensity.is_constant());
+        CHECK(fill.intensity.at(0) == named(base, "fill").intensity.at(0));
+        CHECK(named(s, "key").casts_shadow);
+
+        const curve& key = named(s, "key").intensity;
+        for (const auto& [frame, value] : v.key) {
+            INFO("frame " << frame);
+            CHECK(std::fabs(key.at(frame) - value) <= 1e-6f);
+        }
+
+        CHECK(s.view.is_static() == !v.camera_moves);
+        if (!v.camera_moves) {
+            CHECK(s.view.at(0) == base.view.at(0));
+        } else {
+            // A slow orbit at light-off's distance and height: each frame moves the eye a little, the whole
+            // sequence turns it by 20 degrees.
+            const auto [first_eye, first_target] = s.view.at(0);
+            const auto [last_eye, last_target] = s.view.at(v.frames - 1);
+            CHECK(first_target == last_target);
+            const float turn = std::acos(glm::dot(glm::normalize(glm::vec2(first_eye.x, first_eye.z)),
+                                                  glm::normalize(glm::vec2(last_eye.x, last_eye.z))));
+            CHECK(std::fabs(glm::degrees(turn) - 20.0f) < 0.1f);
+            for (int f = 1; f < v.frames; ++f)
+                CHECK(glm::length(s.view.at(f).first - s.view.at(f - 1).first) < 0.02f);
+        }
+    }
+}
+
+TEST_CASE("the variation scenes are not built-in scenes: --list-scenes keeps to demo/scenes/*.json") {
+    for (const variation& v : variations()) {
+        INFO(v.name);
+        const auto names = builtin_scene_names();
+        CHECK(std::find(names.begin(), names.end(), v.name) == names.end());
+    }
+}
