@@ -12,8 +12,11 @@
 #include <boost/accumulators/statistics/weighted_covariance.hpp>
 #include <boost/accumulators/statistics/weighted_variance.hpp>
 
+#include <emcv/adaptive_sampling.hpp>
 #include <emcv/emcv.hpp>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -431,6 +434,90 @@ void register_batch(const char* precision) {
                                  });
 }
 
+// ---------------------------------------------------------------------------------------------------------
+// the adaptive-sampling policy per frame (emcv/adaptive_sampling.hpp) over a 1920 x 1080 SSS frame
+// ---------------------------------------------------------------------------------------------------------
+
+/// One frame of the policy: plan (variance codes, histogram and solve under a budget, counts), then the
+/// update with this frame's (f, G) and counts. Timed with std::chrono::steady_clock per frame (manual time);
+/// the counter median_frame_ms is the median over the run's frames.
+template <class State>
+void register_policy(const char* name, emcv::sampling_estimator estimator, emcv::sampling_mode mode, State init) {
+    benchmark::RegisterBenchmark(name, [estimator, mode, init](benchmark::State& state) {
+        emcv::sampling_params p;
+        p.estimator = estimator;
+        p.mode = mode;
+        constexpr std::size_t width = 1920;
+        std::vector<State> states(pixels, init);
+        std::vector<float> sigma2(pixels), f(pixels), g(pixels);
+        std::vector<int> n(pixels, 8);
+        emcv_numerics::uniform_source u(5);
+        for (std::size_t i = 0; i < pixels; ++i) g[i] = static_cast<float>(0.5 + 0.25 * u.next());
+        std::vector<double> frame_ms;
+        std::uint32_t frame = 0;
+        for (auto _ : state) {
+            for (std::size_t i = 0; i < pixels; ++i)  // a new noisy f each frame, outside the timed region
+                f[i] = g[i] * static_cast<float>(1.0 + 0.05 * u.next());
+            const auto start = std::chrono::steady_clock::now();
+            const emcv::frame_plan plan =
+                emcv::plan_frame(p, states.data(), pixels, width, nullptr, frame++, 1u, sigma2.data(), n.data());
+            emcv::sampling_update(p, states.data(), pixels, f.data(), g.data(), n.data());
+            const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
+            benchmark::DoNotOptimize(plan.samples);
+            benchmark::ClobberMemory();
+            state.SetIterationTime(took.count());
+            frame_ms.push_back(took.count() * 1e3);
+        }
+        std::sort(frame_ms.begin(), frame_ms.end());
+        state.counters["median_frame_ms"] = frame_ms.empty() ? 0.0 : frame_ms[frame_ms.size() / 2];
+        state.counters["updates"] = static_cast<double>(pixels);
+        state.counters["state_bytes"] = static_cast<double>(sizeof(State) * pixels);
+    })->UseManualTime()->Unit(benchmark::kMillisecond);
+}
+
+/// The copy bound of the policy: the same state bytes read and written once per frame (memcpy between two
+/// state arrays), plus the frame's f, G and count arrays read and the counts written.
+template <class State>
+void register_policy_copy(const char* name) {
+    benchmark::RegisterBenchmark(name, [](benchmark::State& state) {
+        std::vector<State> a(pixels), b(pixels);
+        std::vector<float> f(pixels, 0.5f), g(pixels, 0.5f), sigma2(pixels);
+        std::vector<int> n(pixels, 8), m(pixels);
+        std::vector<double> frame_ms;
+        for (auto _ : state) {
+            const auto start = std::chrono::steady_clock::now();
+            std::memcpy(b.data(), a.data(), sizeof(State) * pixels);
+            std::memcpy(sigma2.data(), f.data(), sizeof(float) * pixels);
+            std::memcpy(m.data(), n.data(), sizeof(int) * pixels);
+            std::memcpy(sigma2.data(), g.data(), sizeof(float) * pixels);
+            std::swap(a, b);
+            const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
+            benchmark::ClobberMemory();
+            state.SetIterationTime(took.count());
+            frame_ms.push_back(took.count() * 1e3);
+        }
+        std::sort(frame_ms.begin(), frame_ms.end());
+        state.counters["median_frame_ms"] = frame_ms.empty() ? 0.0 : frame_ms[frame_ms.size() / 2];
+        state.counters["updates"] = static_cast<double>(pixels);
+        state.counters["state_bytes"] = static_cast<double>(sizeof(State) * pixels);
+    })->UseManualTime()->Unit(benchmark::kMillisecond);
+}
+
+void register_policies() {
+    using emcv::sampling_estimator;
+    using emcv::sampling_mode;
+    register_policy("policy/spvg quality/update + plan_frame", sampling_estimator::spvg, sampling_mode::quality_target,
+                    emcv::port::emcv_moving_stats_init());
+    register_policy("policy/spvg budget/update + plan_frame", sampling_estimator::spvg, sampling_mode::budget,
+                    emcv::port::emcv_moving_stats_init());
+    register_policy_copy<emcv::port::EmcvMovingStats>("policy/spvg/copy (same bytes)");
+    register_policy("policy/cv quality/update + plan_frame", sampling_estimator::cv, sampling_mode::quality_target,
+                    emcv::port::emcv_emcm2_init());
+    register_policy("policy/cv budget/update + plan_frame", sampling_estimator::cv, sampling_mode::budget,
+                    emcv::port::emcv_emcm2_init());
+    register_policy_copy<emcv::port::EmcvEmcm2>("policy/cv/copy (same bytes)");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -440,6 +527,7 @@ int main(int argc, char** argv) {
     register_closed_forms<double>("double");
     register_batch<float>("float");
     register_batch<double>("double");
+    register_policies();
     emcv_bench::command_line cli = emcv_bench::parse_command_line(argc, argv);
     auto drop_partial = [&] {
         if (!cli.partial_path.empty()) std::remove(cli.partial_path.c_str());

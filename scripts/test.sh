@@ -10,12 +10,14 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 export EMCV_REQUIRE_GL=1
-build_dir() { case $1 in default) echo build ;; sanitize) echo build-sanitize ;; esac; }
+build_dir() { case $1 in default) echo build ;; sanitize) echo build-sanitize ;; library) echo build-library ;; esac; }
 for preset in default sanitize library; do
   cmake --preset "$preset" >/dev/null
   cmake --build --preset "$preset"
   if [ "$preset" != library ]; then
     bash scripts/require-test-labels.sh "$(build_dir "$preset")" gpu shader
   fi
+  # the adaptive-sampling policy is GL-free: every preset runs it
+  bash scripts/require-test-labels.sh "$(build_dir "$preset")" policy
   ctest --preset "$preset"
 done

@@ -13,6 +13,13 @@
 #include "control_variate.hpp"
 #include "batch_means.hpp"
 #include "sample_count.hpp"
+// The adaptive-sampling policy is built on the GLM-based port (one source of truth with the shaders): it joins
+// the umbrella where GLM is on the include path, and the rest of the API keeps needing only the standard library.
+#if defined(__has_include)
+#if __has_include(<glm/glm.hpp>)
+#include "adaptive_sampling.hpp"
+#endif
+#endif
 
 /// \namespace emcv
 /// The C++ API: streaming covariance estimators, control variates and sample counts, templated on the

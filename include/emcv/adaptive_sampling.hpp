@@ -1,0 +1,303 @@
+// SPDX-License-Identifier: MIT
+/// \file
+/// emcv adaptive sampling: the per-pixel sample-count policy of the adaptive SSS methods (spvg, cv,
+/// cv-notex) as a C++ API over a frame's arrays, the same computation as the renderer's GPU passes.
+//
+// ABOUT      Per SSS pixel and frame (docs/integration.md):
+//              plan_frame   the history's per-sample variance sigma^2 (supp. Eq. 25-27), then the counts:
+//                           quality target N = ceil(sigma^2 / target) clamped to [n_min, n_max], or a mean
+//                           budget B spent as N = clamp(lambda sigma, n_min, n_max) rounded stochastically,
+//                           lambda solved over a histogram of sigma;
+//              the engine's SSS pass takes N samples per pixel;
+//              sampling_update  pushes the frame's output f (the mean of its N samples) and its control G
+//                           into the history as a batch of N (the comoments grow by N d d^T).
+//            Every formula is the port's (include/emcv/port/history.h, budget.h, ema.h, cv.h), the code the
+//            GPU runs: this header only loops over pixels, in the order of shaders/adaptive/*.comp.glsl
+//            (update, samples, budget) and the burley pass's count. budget_solve reproduces
+//            shaders/adaptive/budget.comp.glsl bit for bit (the same pairwise tree, the same float
+//            operations) when compiled without FMA contraction (-ffp-contract=off, as the port asks).
+//            The per-pixel states are the port's own types, so a history kept in a GPU storage buffer and
+//            one kept here have the same layout: port::EmcvEmcm2 for cv (the EMCM over (f, G)),
+//            port::EmcvMovingStats for spvg (moving stats of f) and cv-notex (of f - G).
+//            Unlike the rest of emcv this header needs GLM (through the port): emcv.hpp includes it only
+//            where <glm/glm.hpp> is found.
+// USAGE      emcv::sampling_params p;  p.estimator = emcv::sampling_estimator::cv;
+//            std::vector<emcv::port::EmcvEmcm2> states(pixels, emcv::port::emcv_emcm2_init());
+//            emcv::plan_frame(p, states.data(), pixels, width, nullptr, frame, seed, sigma2.data(), n.data());
+//            ... render with n[i] samples ...;  emcv::sampling_update(p, states.data(), pixels, f, g, n.data());
+// REFERENCES Xie & Olano 2021 (Eq. 29, 31; supp. Eq. 21, 25-27); SPVG 2020 (eta 0.2, target 1e-4, N <= 64).
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <type_traits>
+
+#include "detail/common.hpp"
+#include "port/history.h"
+
+namespace emcv {
+
+/// Which per-sample variance drives the counts (the adaptive methods of the renderer).
+enum class sampling_estimator {
+    spvg,     ///< moving mean/variance of f (SPVG 2020); state port::EmcvMovingStats
+    cv,       ///< EMCM over (f, G), the residual variance C_ff - C_fG^2 / C_GG (Eq. 31); state port::EmcvEmcm2
+    cv_notex  ///< moving mean/variance of f - G (the control at alpha = 1); state port::EmcvMovingStats
+};
+
+/// How the per-sample variances become counts.
+enum class sampling_mode {
+    quality_target,  ///< N = ceil(sigma^2 / target) clamped to [n_min, n_max]: each output's variance on target
+    budget           ///< a mean of `budget` samples per pixel, N proportional to sigma (least mean squared error)
+};
+
+/// The eta the renderer uses for an estimator: EMCV_HISTORY_ETA_EMCM (the paper's 0.05) for cv,
+/// EMCV_HISTORY_ETA_MOVING (SPVG's 0.2) for spvg and cv-notex.
+inline float sampling_default_eta(sampling_estimator e) noexcept {
+    return e == sampling_estimator::cv ? EMCV_HISTORY_ETA_EMCM : EMCV_HISTORY_ETA_MOVING;
+}
+
+/// The policy's parameters; check_sampling_params says which values are accepted. The defaults are the
+/// port's tunables (include/emcv/port/history.h), so an engine's CPU plan and the renderer's GPU passes agree
+/// unless told otherwise.
+struct sampling_params {
+    sampling_estimator estimator = sampling_estimator::spvg;  ///< the variance that drives the counts
+    sampling_mode mode = sampling_mode::quality_target;       ///< quality target or budget
+    float target = EMCV_HISTORY_TARGET;  ///< quality target: the output variance aimed at, finite and > 0
+    float budget = 8.0f;                 ///< budget mode: mean samples per pixel, in (0, n_max]
+    int n_min = EMCV_HISTORY_N_MIN;      ///< fewest samples of a pixel whose kernel is wider than a pixel, >= 1
+    int n_max = EMCV_HISTORY_N_MAX;      ///< most samples of a pixel, >= n_min
+    std::optional<float> eta;            ///< history weight in (0, 0.5]; empty: sampling_default_eta(estimator)
+};
+
+/// The history weight p uses: p.eta, or the estimator's default when it is empty.
+inline float sampling_eta(const sampling_params& p) noexcept {
+    return p.eta ? *p.eta : sampling_default_eta(p.estimator);
+}
+
+/// Throws std::invalid_argument naming the first broken requirement: n_min >= 1, n_min <= n_max, eta in
+/// (0, 0.5], and the mode's own value (quality target: target finite and > 0; budget: budget finite, > 0 and
+/// <= n_max). The other mode's value is not read, so it is not checked.
+inline void check_sampling_params(const sampling_params& p) {
+    constexpr const char* where = "sampling_params";
+    detail::require(p.n_min >= 1, where, "n_min must be >= 1 (a pixel at 0 would never learn its noise)");
+    detail::require(p.n_min <= p.n_max, where, "n_min must not exceed n_max");
+    const float eta = sampling_eta(p);
+    detail::require(eta > 0.0f && eta <= 0.5f, where, "eta must lie in (0, 0.5]");
+    if (p.mode == sampling_mode::quality_target)
+        detail::require(std::isfinite(p.target) && p.target > 0.0f, where, "target must be finite and > 0");
+    else
+        detail::require(std::isfinite(p.budget) && p.budget > 0.0f && p.budget <= static_cast<float>(p.n_max),
+                        where, "budget must be finite, > 0 and <= n_max");
+}
+
+namespace detail {
+
+template <class State>
+constexpr bool is_sampling_state =
+    std::is_same<State, port::EmcvEmcm2>::value || std::is_same<State, port::EmcvMovingStats>::value;
+
+/// The estimator's state type must be the one passed: cv keeps an EMCM, the others moving stats.
+template <class State>
+void check_state_type(const sampling_params& p, const char* where) {
+    static_assert(is_sampling_state<State>, "the states are port::EmcvEmcm2 (cv) or port::EmcvMovingStats");
+    const bool emcm = std::is_same<State, port::EmcvEmcm2>::value;
+    require(emcm == (p.estimator == sampling_estimator::cv), where,
+            "the states must be port::EmcvEmcm2 for cv and port::EmcvMovingStats for spvg and cv_notex");
+}
+
+inline void check_pixels(const void* pointer, std::size_t pixels, const char* where, const char* what) {
+    require(pointer != nullptr || pixels == 0, where, what);
+}
+
+/// One pixel's push, as shaders/adaptive/update.comp.glsl (n > 0 only).
+inline void push(const sampling_params&, float eta, port::EmcvEmcm2& s, float f, float g, float n) {
+    port::emcv_emcm2_push_batch(s, glm::vec2(f, g), eta, n);
+}
+inline void push(const sampling_params& p, float eta, port::EmcvMovingStats& s, float f, float g, float n) {
+    const float x = p.estimator == sampling_estimator::cv_notex ? port::emcv_cv_residual(f, 1.0f, g) : f;
+    port::emcv_moving_stats_push_batch(s, x, eta, n);
+}
+
+inline float sigma2_of(const port::EmcvEmcm2& s, float eta) { return port::emcv_history_sigma2_cv(s, eta); }
+inline float sigma2_of(const port::EmcvMovingStats& s, float eta) { return port::emcv_history_sigma2_moving(s, eta); }
+
+}  // namespace detail
+
+/// Pushes each pixel's frame into its history, as the renderer's adaptive-update pass does: f is the pixel's
+/// output (the mean of the taken[i] samples it took), g its in-frame control G (both as the tracked scalar,
+/// e.g. gamma-space luminance); the push is a batch of taken[i] (supp. Eq. 25-27), so the history estimates
+/// the variance of one sample. spvg pushes f, cv the pair (f, G), cv-notex f - G. A pixel with taken[i] <= 0
+/// learns nothing about its noise and is left as it is; a non-finite f or G is refused by the port (state
+/// unchanged, `rejected` + 1). g may be null for spvg only.
+/// Throws std::invalid_argument when the parameters are invalid, the state type is not the estimator's, or a
+/// needed array is null.
+template <class State>
+void sampling_update(const sampling_params& p, State* states, std::size_t pixels, const float* f, const float* g,
+                     const int* taken) {
+    constexpr const char* where = "sampling_update";
+    check_sampling_params(p);
+    detail::check_state_type<State>(p, where);
+    detail::check_pixels(states, pixels, where, "states must not be null");
+    detail::check_pixels(f, pixels, where, "f must not be null");
+    detail::check_pixels(taken, pixels, where, "taken must not be null");
+    if (p.estimator != sampling_estimator::spvg)
+        detail::check_pixels(g, pixels, where, "g must not be null for cv and cv_notex");
+    const float eta = sampling_eta(p);
+    for (std::size_t i = 0; i < pixels; ++i) {
+        if (taken[i] <= 0) continue;
+        detail::push(p, eta, states[i], f[i], g != nullptr ? g[i] : 0.0f, static_cast<float>(taken[i]));
+    }
+}
+
+/// Each pixel's per-sample variance code, as the renderer's adaptive-samples pass writes it:
+/// port::emcv_history_sigma2_cv (cv) or port::emcv_history_sigma2_moving (spvg, cv-notex), which is
+/// port::emcv_history_no_variance() for a history younger than two frames; port::emcv_history_no_samples()
+/// where sub_pixel[i] is non-zero and the estimator has a control (cv, cv-notex: a sub-pixel kernel's scattered
+/// value is its own diffuse). spvg has no control to stand in for it and ignores sub_pixel, as the renderer
+/// does. sub_pixel may be null (no sub-pixel kernels).
+template <class State>
+void sampling_sigma2(const sampling_params& p, const State* states, std::size_t pixels, const std::uint8_t* sub_pixel,
+                     float* out) {
+    constexpr const char* where = "sampling_sigma2";
+    check_sampling_params(p);
+    detail::check_state_type<State>(p, where);
+    detail::check_pixels(states, pixels, where, "states must not be null");
+    detail::check_pixels(out, pixels, where, "out must not be null");
+    const float eta = sampling_eta(p);
+    const bool skips = sub_pixel != nullptr && p.estimator != sampling_estimator::spvg;
+    for (std::size_t i = 0; i < pixels; ++i)
+        out[i] = skips && sub_pixel[i] != 0 ? port::emcv_history_no_samples() : detail::sigma2_of(states[i], eta);
+}
+
+/// The budget's histogram of sigma: port::EmcvBudgetBlock, the storage block the GPU passes share (the same
+/// layout, so it can be uploaded as it is).
+using budget_histogram = port::EmcvBudgetBlock;
+
+/// An empty histogram (every count 0, lambda and planned 0).
+inline budget_histogram make_budget_histogram() noexcept {
+    budget_histogram h{};
+    return h;
+}
+
+/// Adds one pixel's variance code to the histogram, as the GPU's emcv_budget_add
+/// (shaders/adaptive/budget_block.h): emcv_history_no_samples() counts as a zero pixel (its share goes to the
+/// others), a code without a variance (negative or NaN) as a default pixel (it takes the budget itself, outside
+/// the solve), a variance in the bin of its sigma.
+inline void budget_add(budget_histogram& h, float sigma2) noexcept {
+    if (sigma2 == port::emcv_history_no_samples()) {
+        ++h.zero_pixels;
+    } else if (!(sigma2 >= 0.0f)) {
+        ++h.default_pixels;
+    } else {
+        const float sigma = std::sqrt(sigma2);
+        const std::uint32_t bin = port::emcv_budget_bin(sigma);
+        ++h.bin_count[bin];
+        h.bin_fraction[bin] += port::emcv_budget_fraction(sigma);
+    }
+}
+
+/// Adds every pixel's variance code (budget_add). Throws std::invalid_argument when sigma2 is null.
+inline void budget_add(budget_histogram& h, const float* sigma2, std::size_t pixels) {
+    detail::check_pixels(sigma2, pixels, "budget_add", "sigma2 must not be null");
+    for (std::size_t i = 0; i < pixels; ++i) budget_add(h, sigma2[i]);
+}
+
+/// The scale lambda with sum_i clamp(lambda sigma_i, n_min, n_max) = budget (histogram pixels + zero pixels)
+/// over the histogram, computed as shaders/adaptive/budget.comp.glsl does, bit for bit (compiled with
+/// -ffp-contract=off): the bins' pixel counts and samples summed in the shader's pairwise tree (stride 128,
+/// 64, ..., 1), EMCV_BUDGET_SOLVE_STEPS bisection steps over lambda's bit pattern between
+/// port::emcv_budget_lambda_low_bits() and _high_bits(), `total < planned` moving the low end, the high end
+/// returned. Unlike the shader it leaves the histogram as it is (clear it with make_budget_histogram()).
+/// Throws std::invalid_argument when the parameters are invalid (the mode need not be budget: p.budget is
+/// checked as under a budget).
+inline float budget_solve(const sampling_params& p, const budget_histogram& h) {
+    sampling_params as_budget = p;
+    as_budget.mode = sampling_mode::budget;
+    check_sampling_params(as_budget);
+    constexpr std::uint32_t bins = EMCV_BUDGET_BINS;
+    float bin_sum[bins];
+    float partial[bins];
+    std::uint32_t pixels[bins];
+    for (std::uint32_t b = 0; b < bins; ++b) {
+        bin_sum[b] = port::emcv_budget_bin_sum(b, h.bin_count[b], h.bin_fraction[b]);
+        pixels[b] = h.bin_count[b];
+    }
+    for (std::uint32_t stride = bins / 2u; stride > 0u; stride /= 2u)
+        for (std::uint32_t b = 0; b < stride; ++b) pixels[b] += pixels[b + stride];
+    const float n_min = static_cast<float>(p.n_min), n_max = static_cast<float>(p.n_max);
+    const float planned = p.budget * static_cast<float>(pixels[0] + h.zero_pixels);
+    std::uint32_t low = port::emcv_budget_lambda_low_bits(), high = port::emcv_budget_lambda_high_bits();
+    for (int step = 0; step < EMCV_BUDGET_SOLVE_STEPS; ++step) {
+        const std::uint32_t middle = low + (high - low) / 2u;
+        const float lambda = port::emcv_bits_float(middle);
+        for (std::uint32_t b = 0; b < bins; ++b)
+            partial[b] = port::emcv_budget_bin_samples(lambda, bin_sum[b], h.bin_count[b], n_min, n_max);
+        for (std::uint32_t stride = bins / 2u; stride > 0u; stride /= 2u)
+            for (std::uint32_t b = 0; b < stride; ++b) partial[b] = partial[b] + partial[b + stride];
+        if (partial[0] < planned) low = middle;
+        else high = middle;
+    }
+    return port::emcv_bits_float(high);
+}
+
+/// The counts of a frame from its variance codes, as the renderer's burley pass takes them: under a quality
+/// target port::emcv_history_count_quality(sigma2, target, n_min, n_max) (n_max without a variance); under a
+/// budget port::emcv_history_count_budget(sigma2, lambda, budget, n_min, n_max, u) with
+/// u = port::emcv_budget_u(x, y, frame, seed) at the pixel's (x, y) = (i % width, i / width) (the budget itself
+/// without a variance). 0 for emcv_history_no_samples(). lambda is read under a budget only. Returns the sum
+/// of the counts.
+/// Throws std::invalid_argument when the parameters are invalid, an array is null, or width is 0 or does not
+/// divide pixels.
+inline std::uint64_t sampling_counts(const sampling_params& p, const float* sigma2, std::size_t pixels,
+                                     std::size_t width, float lambda, std::uint32_t frame, std::uint32_t seed,
+                                     int* out) {
+    constexpr const char* where = "sampling_counts";
+    check_sampling_params(p);
+    detail::check_pixels(sigma2, pixels, where, "sigma2 must not be null");
+    detail::check_pixels(out, pixels, where, "out must not be null");
+    detail::require(width > 0 && pixels % width == 0, where, "width must be > 0 and divide the pixel count");
+    std::uint64_t total = 0;
+    if (p.mode == sampling_mode::quality_target) {
+        for (std::size_t i = 0; i < pixels; ++i) {
+            out[i] = port::emcv_history_count_quality(sigma2[i], p.target, p.n_min, p.n_max);
+            total += static_cast<std::uint64_t>(out[i]);
+        }
+        return total;
+    }
+    for (std::size_t i = 0; i < pixels; ++i) {
+        const float u = port::emcv_budget_u(static_cast<std::uint32_t>(i % width),
+                                            static_cast<std::uint32_t>(i / width), frame, seed);
+        out[i] = port::emcv_history_count_budget(sigma2[i], lambda, p.budget, p.n_min, p.n_max, u);
+        total += static_cast<std::uint64_t>(out[i]);
+    }
+    return total;
+}
+
+/// What plan_frame decided for a frame.
+struct frame_plan {
+    float lambda = 0.0f;        ///< budget mode: the solved scale (0 under a quality target)
+    std::uint64_t samples = 0;  ///< the sum of the counts
+};
+
+/// One frame's plan: sampling_sigma2 into sigma2_out, then under a budget the histogram (budget_add) and
+/// budget_solve, then sampling_counts into counts_out. states, sub_pixel (may be null), sigma2_out and
+/// counts_out hold `pixels` entries in rows of `width`; frame and seed salt the budget's stochastic rounding
+/// (the renderer passes its frame index and seed). Throws std::invalid_argument as the functions it calls.
+template <class State>
+frame_plan plan_frame(const sampling_params& p, const State* states, std::size_t pixels, std::size_t width,
+                      const std::uint8_t* sub_pixel, std::uint32_t frame, std::uint32_t seed, float* sigma2_out,
+                      int* counts_out) {
+    sampling_sigma2(p, states, pixels, sub_pixel, sigma2_out);
+    frame_plan plan;
+    if (p.mode == sampling_mode::budget) {
+        budget_histogram h = make_budget_histogram();
+        budget_add(h, sigma2_out, pixels);
+        plan.lambda = budget_solve(p, h);
+    }
+    plan.samples = sampling_counts(p, sigma2_out, pixels, width, plan.lambda, frame, seed, counts_out);
+    return plan;
+}
+
+}  // namespace emcv
