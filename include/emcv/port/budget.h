@@ -44,13 +44,14 @@ struct EmcvBudgetBlock {
     float planned;        ///< the total the solve aimed at: B (histogram pixels + zero_pixels)
     uint default_pixels;  ///< pixels that will have no variance yet (they take B)
     uint zero_pixels;     ///< pixels that take no samples (sub-pixel kernels): their share goes to the others
-    uint bin_count[EMCV_BUDGET_BINS];
+    uint bin_count[EMCV_BUDGET_BINS];     ///< pixels per sigma bin (emcv_budget_bin)
     uint bin_fraction[EMCV_BUDGET_BINS];  ///< sum of the 10 mantissa bits under the bin's 3
 };
 
 /// The float's bits (C++ std::memcpy-equivalent, GLSL floatBitsToUint).
 #ifdef __cplusplus
 EMCV_FN uint emcv_float_bits(float x) { return glm::floatBitsToUint(x); }
+/// The float whose bits are x (C++ std::memcpy-equivalent, GLSL uintBitsToFloat).
 EMCV_FN float emcv_bits_float(uint x) { return glm::uintBitsToFloat(x); }
 #else
 uint emcv_float_bits(float x) { return floatBitsToUint(x); }
@@ -97,6 +98,7 @@ EMCV_FN float emcv_budget_bin_samples(float lambda, float bin_sum, uint count, f
 /// 2^-24 to 2^8 against counts from 2^-2 (under any floor) to 2^10 (N_MAX's range). The span holds 44 2^23 <
 /// 2^29 patterns, so EMCV_BUDGET_SOLVE_STEPS halvings end on adjacent floats.
 EMCV_FN uint emcv_budget_lambda_low_bits() { return uint(127 - 10) << 23u; }
+/// The bisection's upper bound on lambda's bit pattern (2^34; see emcv_budget_lambda_low_bits).
 EMCV_FN uint emcv_budget_lambda_high_bits() { return uint(127 + 34) << 23u; }
 
 /// A pixel's real-valued share: clamp(lambda sigma, n_min, n_max).
