@@ -38,7 +38,7 @@ void main() {
         float f = emcv_adaptive_tracked(p, texelFetch(scattered_diffuse, p, 0).xyz);
         float g = emcv_adaptive_tracked(p, texelFetch(lit_diffuse, p, 0).xyz);
 #if defined(EMCV_ADAPTIVE_CV)
-        emcv_emcm2_push_batch(s, vec2(f, g), EMCV_HISTORY_ETA_EMCM, float(n));
+        emcv_history_push_cv(s, f, g, EMCV_HISTORY_ETA_EMCM, float(n));
 #elif defined(EMCV_ADAPTIVE_NOTEX)
         emcv_moving_stats_push_batch(s, emcv_cv_residual(f, 1.0f, g), EMCV_HISTORY_ETA_MOVING, float(n));
 #else

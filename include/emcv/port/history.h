@@ -184,6 +184,41 @@ EMCV_FN float emcv_history_sigma2_cv(EMCV_IN(EmcvEmcm2) s, float eta) {
     return v;
 }
 
+/// The coefficient cv predicts f's change from G's with: C_fG / C_GG (Eq. 31) once G has varied, else, for a
+/// history that has only seen a static G, Eq. 42's mu_f / mu_G (F independent of the light's intensity: a light
+/// scaled by k scales f and G alike), 0 where G's mean is 0.
+EMCV_FN float emcv_history_predicted_alpha(EMCV_IN(EmcvEmcm2) s) {
+    if (s.cov.z > emcv_float_min_normal()) return emcv_cv_coefficient_emcm2(s);
+    return s.mean.y > emcv_float_min_normal() ? s.mean.x / s.mean.y : 0.0f;
+}
+
+/// A residual jump beyond 5 per-sample standard deviations is a change of the signal, not noise: by Chebyshev's
+/// inequality noise of any distribution passes it at most 1 frame in 25 (a Gaussian once in 1.7 million).
+EMCV_FN float emcv_history_change_z2() { return 25.0f; }
+
+/// cv's update: f and G, the means of this frame's n samples, into the EMCM as a batch (supp. Eq. 21, 25-27).
+/// Once the history is as old as its memory (1 / eta frames, so that sigma^2 is an estimate worth testing
+/// against), a residual move e = (f - mu_f) - alpha (g - mu_G) with the predicted alpha beyond 5 sigma
+/// (n e^2 > 25 sigma^2) is a change the control does not explain: it enters with the weight of a 5-sigma move
+/// (n' = 25 sigma^2 / e^2), so a real rise of the noise still raises sigma (about 2x per such frame at eta 0.05),
+/// and the means restart at (f, g), so that the frames after it are not read as noise for 1 / eta frames
+/// (docs/renderer.md, "Changes the control does not explain"). Returns false when f or g is not finite.
+EMCV_FN bool emcv_history_push_cv(EMCV_INOUT(EmcvEmcm2) s, float f, float g, float eta, float n) {
+    float sigma2 = emcv_history_sigma2_cv(s, eta);
+    bool mature = float(s.count) * eta >= 1.0f;
+    if (mature && sigma2 > 0.0f && emcv_emcm2_valid(s) && emcv_is_finite(f) && emcv_is_finite(g)) {
+        EMCV_PRECISE float e = (f - s.mean.x) - emcv_history_predicted_alpha(s) * (g - s.mean.y);
+        EMCV_PRECISE float z2 = n * e * e;
+        if (z2 > emcv_history_change_z2() * sigma2) {
+            EMCV_PRECISE float weight = emcv_history_change_z2() * sigma2 / (e * e);
+            emcv_emcm2_push_batch(s, vec2(f, g), eta, weight);
+            s.mean = vec2(f, g);
+            return true;
+        }
+    }
+    return emcv_emcm2_push_batch(s, vec2(f, g), eta, n);
+}
+
 /// Quality target: N = ceil(sigma2 / target) clamped to [n_min, n_max]; n_max without a variance or with a
 /// NaN one; 0 for emcv_history_no_samples().
 EMCV_FN int emcv_history_count_quality(float sigma2, float target, int n_min, int n_max) {
