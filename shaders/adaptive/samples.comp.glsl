@@ -44,16 +44,21 @@ bool emcv_adaptive_reproject(ivec2 p, uint material, out vec4 a, out vec4 b) {
     return emcv_adaptive_decode(a, b, kept);
 }
 
-void main() {
-    ivec2 p = emcv_render_tile_pixel();
-    if (!emcv_render_on_screen(p)) return;
-    uint code = emcv_render_material_code(p);
+// The pixels of this 8x8 tile: their per-sample variance (or code) and material, for the 3x3 pooling below.
+shared float tile_sigma2[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];
+shared uint tile_code[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];
+
+/// This pixel's own per-sample variance (or its code) from its kept or fresh history; 0 material for pixels
+/// that do not scatter (and their history reset: nothing stale is ever reprojected from there).
+float own_sigma2(ivec2 p, out uint code) {
+    code = 0u;
+    if (!emcv_render_on_screen(p)) return emcv_history_no_samples();
+    code = emcv_render_material_code(p);
     if (!emcv_render_scatters(code)) {
-        // Inside an SSS tile but not scattering: no samples, and a fresh history so that nothing stale is
-        // ever reprojected from here.
         emcv_adaptive_store(p, emcv_adaptive_init());
         imageStore(samples_image, p, uvec4(0u));  // the burley pass skips non-scattering pixels before reading
-        return;
+        code = 0u;
+        return emcv_history_no_samples();
     }
     vec4 a, b;
     EmcvAdaptiveState s = emcv_adaptive_init();
@@ -63,7 +68,34 @@ void main() {
     } else {
         emcv_adaptive_store(p, s);
     }
-    float sigma2 = emcv_adaptive_sub_pixel(p, code) ? emcv_history_no_samples() : emcv_adaptive_sigma2(s);
+    return emcv_adaptive_sub_pixel(p, code) ? emcv_history_no_samples() : emcv_adaptive_sigma2(s);
+}
+
+void main() {
+    ivec2 p = emcv_render_tile_pixel();
+    uint code;
+    float own = own_sigma2(p, code);
+    uint here = gl_LocalInvocationIndex;
+    tile_sigma2[here] = own;
+    tile_code[here] = code;
+    barrier();
+    if (code == 0u) return;
+    // The per-sample variance a frame's allocation reads is pooled over the pixel's 3x3 neighbours of the same
+    // material within its tile (emcv/port/history.h, emcv_history_pool_sigma2): one pixel's estimate rests on
+    // about 1 / eta frames of a heavy-tailed residual, and its neighbours see nearly the same noise.
+    float sum = 0.0f;
+    uint count = 0u;
+    ivec2 l = ivec2(gl_LocalInvocationID.xy);
+    for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+            ivec2 q = l + ivec2(dx, dy);
+            if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(EMCV_RENDER_TILE_SIZE)))) continue;
+            uint i = uint(q.x + q.y * EMCV_RENDER_TILE_SIZE);
+            if (tile_code[i] != code) continue;
+            emcv_history_pool_add(sum, count, tile_sigma2[i]);
+        }
+    }
+    float sigma2 = emcv_history_pool_sigma2(own, sum, count);
     if (emcv_history_budget_mode()) {
         // The burley pass turns sigma into N once sss-adaptive-budget has solved lambda from this frame's
         // histogram: the image carries the variance (or its code) until then.

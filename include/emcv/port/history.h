@@ -219,6 +219,23 @@ EMCV_FN bool emcv_history_push_cv(EMCV_INOUT(EmcvEmcm2) s, float f, float g, flo
     return emcv_emcm2_push_batch(s, vec2(f, g), eta, n);
 }
 
+/// Pooling, one neighbour: adds a neighbour's per-sample variance to the running sum when it has one (codes
+/// are skipped). Neighbours are visited row by row, dy then dx from -1 to 1, on the GPU and in C++.
+EMCV_FN void emcv_history_pool_add(EMCV_INOUT(float) sum, EMCV_INOUT(uint) count, float sigma2) {
+    if (!(sigma2 >= 0.0f)) return;
+    sum = sum + sigma2;
+    count = count + 1u;
+}
+
+/// The per-sample variance a pixel is allocated with: the mean over its 3x3 neighbours of the same material in
+/// its 8x8 tile that have one (itself included), an unbiased estimate of the local variance with up to 9 times
+/// less noise where the noise varies slowly across pixels (a Burley kernel wider than a pixel spreads each
+/// light feature over its neighbours). A pixel whose own slot holds a code keeps the code.
+EMCV_FN float emcv_history_pool_sigma2(float own, float sum, uint count) {
+    if (!(own >= 0.0f) || count == 0u) return own;
+    return sum / float(count);
+}
+
 /// Quality target: N = ceil(sigma2 / target) clamped to [n_min, n_max]; n_max without a variance or with a
 /// NaN one; 0 for emcv_history_no_samples().
 EMCV_FN int emcv_history_count_quality(float sigma2, float target, int n_min, int n_max) {
