@@ -9,6 +9,8 @@
 //                 the floor N_MIN = 1
 //   budget        budget mode on the static sphere: every frame from frame 2 spends B per SSS pixel within 2%,
 //                 and cv and spvg score above burley-B (same samples, spent where the noise is)
+//   budget switch budget mode across the sphere's switch: cv scores above burley-B over the run, above spvg over
+//                 the 30 frames after the switch, and spends B within 2% in every frame
 //   far           the built-in `far` scene (every kernel under a pixel): cv and cv-notex take 0 samples
 // PSNR as emcv-demo reports it: display images (tonemapped, sRGB) against the reference's, per frame, averaged.
 // The switch uses a sphere built in code rather than the built-in light-off, so that its bounds do not follow the
@@ -165,6 +167,24 @@ TEST_CASE("budget mode: B samples per SSS pixel in every frame, spent where the 
         INFO("burley-8 " << db_uniform << " dB, " << name << " " << db << " dB");
         CHECK(db > db_uniform);
     }
+    CHECK(messenger.error_count() == 0);
+}
+
+TEST_CASE("budget mode across a light switch: cv beats burley-B over the run and spvg after the switch") {
+    emcv::gl::context ctx = emcv::test::context_or_skip();
+    emcv::gl::debug_messenger messenger;
+    constexpr int switch_frame = 20, frames = switch_frame + 30;
+    const scene s = switching_sphere(switch_frame);
+    const run_result uniform = render_all(s, "burley-8", frames), ref = render_all(s, "reference", frames);
+    const run_result spvg = render_all(s, "spvg", frames, 8.0), cv = render_all(s, "cv", frames, 8.0);
+    const double run_uniform = mean_psnr(uniform, ref, 2, frames), run_cv = mean_psnr(cv, ref, 2, frames);
+    const double after_spvg = mean_psnr(spvg, ref, switch_frame, frames), after_cv = mean_psnr(cv, ref, switch_frame, frames),
+                 after_uniform = mean_psnr(uniform, ref, switch_frame, frames);
+    INFO("frames 2-49: burley-8 " << run_uniform << " dB, cv " << run_cv << " dB; 30 frames after the switch: burley-8 "
+                                  << after_uniform << ", spvg " << after_spvg << ", cv " << after_cv);
+    CHECK(run_cv > run_uniform);
+    CHECK(after_cv > after_spvg);  // spvg sends the budget to every pixel the switch changed
+    for (int f = 2; f < frames; ++f) CHECK(std::fabs(cv.mean_spp[std::size_t(f)] - 8.0) <= 0.16);
     CHECK(messenger.error_count() == 0);
 }
 
