@@ -246,6 +246,12 @@ gl::float_image renderer::linear() const { return gl::read_texture_rgba32f(p_->r
 gl::float_image renderer::diffuse_irradiance() const {
     return gl::read_texture_rgba32f(p_->res.lit_diffuse.id(), width(), height());
 }
+gl::float_image renderer::scattered_irradiance() const {
+    return gl::read_texture_rgba32f(p_->res.sss_out.id(), width(), height());
+}
+gl::float_image renderer::surface_albedo() const {
+    return gl::read_texture_rgba32f(p_->res.gb_albedo.id(), width(), height());
+}
 
 gl::float_image renderer::sss_mask() const {
     const std::vector<std::uint32_t> codes = read_uint_texture(p_->res.gb_material.id(), width(), height(), GL_UNSIGNED_BYTE);

@@ -57,6 +57,11 @@ public:
     gl::float_image sample_counts() const;
     /// Linear RGBA diffuse irradiance without albedo, before scattering (the lighting pass's output).
     gl::float_image diffuse_irradiance() const;
+    /// Linear RGBA diffuse irradiance after scattering at the SSS pixels (the SSS passes' output; what the
+    /// adaptive methods track as f). Meaningful at SSS pixels of a frame whose SSS passes ran.
+    gl::float_image scattered_irradiance() const;
+    /// Linear RGBA surface albedo with its texture (the G-buffer's).
+    gl::float_image surface_albedo() const;
     /// cv: the control-variate coefficient alpha = C_fG / C_GG per pixel from the history (heatmap); zeros for
     /// the other methods.
     gl::float_image cv_alpha() const;

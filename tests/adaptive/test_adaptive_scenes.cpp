@@ -17,7 +17,9 @@
 // demo's scene choices (light-off's key light now changes most of its SSS pixels too: docs/scenes.md).
 #include <catch2/catch_test_macros.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -185,6 +187,66 @@ TEST_CASE("budget mode across a light switch: cv beats burley-B over the run and
     CHECK(run_cv > run_uniform);
     CHECK(after_cv > after_spvg);  // spvg sends the budget to every pixel the switch changed
     for (int f = 2; f < frames; ++f) CHECK(std::fabs(cv.mean_spp[std::size_t(f)] - 8.0) <= 0.16);
+    CHECK(messenger.error_count() == 0);
+}
+
+TEST_CASE("quality target: the output's variance over seeds lands on the target") {
+    emcv::gl::context ctx = emcv::test::context_or_skip();
+    emcv::gl::debug_messenger messenger;
+    // The static sphere rendered with 24 seeds up to frame 30: per SSS pixel, the variance over seeds of the
+    // tracked value (gamma-space luminance of albedo * scattered * exposure, emcv_gamma_luminance) at that frame,
+    // over the target, for pixels no seed held at N_MIN or N_MAX. A pixel's estimate over 24 seeds has a relative
+    // standard deviation of about sqrt(2 / 23) = 0.3 (more for heavy tails); the mean over the ~600 pixels is
+    // within a few percent of its expectation, so a calibrated rule lands within 15% (the median within 25%: the
+    // median of a chi-square over its mean is under 1 by 3% at 23 degrees of freedom).
+    constexpr int seeds = 24, frame = 30;
+    const scene s = switching_sphere(-1);
+    std::vector<std::vector<float>> tracked(seeds);
+    std::vector<std::vector<float>> counts(seeds);
+    std::vector<float> mask;
+    for (const char* name : {"spvg", "cv"}) {
+        INFO("method " << name);
+        for (int k = 0; k < seeds; ++k) {
+            render_options o;
+            o.width = test_width;
+            o.height = test_height;
+            o.seed = std::uint32_t(100 + k);
+            renderer r(s, *parse_method(name), o);
+            for (int f = 0; f <= frame; ++f) r.render(f);
+            const emcv::gl::float_image scattered = r.scattered_irradiance(), albedo = r.surface_albedo();
+            mask = r.sss_mask().pixels;
+            counts[std::size_t(k)] = r.sample_counts().pixels;
+            tracked[std::size_t(k)].assign(mask.size(), 0.0f);
+            for (std::size_t i = 0; i < mask.size(); ++i) {
+                const glm::vec3 a(albedo.pixels[4 * i], albedo.pixels[4 * i + 1], albedo.pixels[4 * i + 2]);
+                const glm::vec3 f(scattered.pixels[4 * i], scattered.pixels[4 * i + 1], scattered.pixels[4 * i + 2]);
+                tracked[std::size_t(k)][i] = emcv::port::emcv_gamma_luminance(a * f);  // exposure 1
+            }
+        }
+        std::vector<double> ratios;
+        for (std::size_t i = 0; i < mask.size(); ++i) {
+            if (mask[i] == 0.0f) continue;
+            bool clamped = false;
+            double sum = 0.0, sum2 = 0.0;
+            for (int k = 0; k < seeds; ++k) {
+                const float n = counts[std::size_t(k)][i];
+                clamped = clamped || n <= float(EMCV_HISTORY_N_MIN) || n >= float(EMCV_HISTORY_N_MAX);
+                sum += tracked[std::size_t(k)][i];
+                sum2 += double(tracked[std::size_t(k)][i]) * tracked[std::size_t(k)][i];
+            }
+            if (clamped) continue;
+            const double var = (sum2 - sum * sum / seeds) / (seeds - 1);
+            ratios.push_back(var / double(EMCV_HISTORY_TARGET));
+        }
+        REQUIRE(ratios.size() > 100);
+        double mean = 0.0;
+        for (double q : ratios) mean += q / double(ratios.size());
+        std::sort(ratios.begin(), ratios.end());
+        const double median = ratios[ratios.size() / 2];
+        INFO(ratios.size() << " pixels: output variance / target mean " << mean << ", median " << median);
+        CHECK(std::fabs(mean - 1.0) <= 0.15);
+        CHECK(std::fabs(median - 1.0) <= 0.25);
+    }
     CHECK(messenger.error_count() == 0);
 }
 
