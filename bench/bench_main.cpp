@@ -459,8 +459,8 @@ void register_policy(const char* name, emcv::sampling_estimator estimator, emcv:
             for (std::size_t i = 0; i < pixels; ++i)  // a new noisy f each frame, outside the timed region
                 f[i] = g[i] * static_cast<float>(1.0 + 0.05 * u.next());
             const auto start = std::chrono::steady_clock::now();
-            const emcv::frame_plan plan =
-                emcv::plan_frame(p, states.data(), pixels, width, nullptr, frame++, 1u, sigma2.data(), n.data());
+            const emcv::frame_plan plan = emcv::plan_frame(p, states.data(), pixels, width, nullptr, nullptr, frame++,
+                                                           1u, sigma2.data(), n.data());
             emcv::sampling_update(p, states.data(), pixels, f.data(), g.data(), n.data());
             const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
             benchmark::DoNotOptimize(plan.samples);

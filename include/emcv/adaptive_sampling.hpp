@@ -4,13 +4,16 @@
 /// cv-notex) as a C++ API over a frame's arrays, the same computation as the renderer's GPU passes.
 //
 // ABOUT      Per SSS pixel and frame (docs/integration.md):
-//              plan_frame   the history's per-sample variance sigma^2 (supp. Eq. 25-27), then the counts:
+//              plan_frame   the history's per-sample variance sigma^2 (supp. Eq. 25-27), pooled over the pixel's
+//                           3x3 neighbours of its material in its 8x8 tile (sampling_pool), then the counts:
 //                           quality target N = ceil(sigma^2 / target) clamped to [n_min, n_max], or a mean
 //                           budget B spent as N = clamp(lambda sigma, n_min, n_max) rounded stochastically,
 //                           lambda solved over a histogram of sigma;
 //              the engine's SSS pass takes N samples per pixel;
 //              sampling_update  pushes the frame's output f (the mean of its N samples) and its control G
-//                           into the history as a batch of N (the comoments grow by N d d^T).
+//                           into the history as a batch of N (the comoments grow by N d d^T); cv's push is
+//                           robust (port::emcv_history_push_cv: a jump the control does not explain enters
+//                           with a 5-sigma weight and restarts the means).
 //            Every formula is the port's (include/emcv/port/history.h, budget.h, ema.h, cv.h), the code the
 //            GPU runs: this header only loops over pixels, in the order of shaders/adaptive/*.comp.glsl
 //            (update, samples, budget) and the burley pass's count. budget_solve reproduces
@@ -23,7 +26,8 @@
 //            where <glm/glm.hpp> is found.
 // USAGE      emcv::sampling_params p;  p.estimator = emcv::sampling_estimator::cv;
 //            std::vector<emcv::port::EmcvEmcm2> states(pixels, emcv::port::emcv_emcm2_init());
-//            emcv::plan_frame(p, states.data(), pixels, width, nullptr, frame, seed, sigma2.data(), n.data());
+//            emcv::plan_frame(p, states.data(), pixels, width, material.data(), nullptr, frame, seed, sigma2.data(),
+//                             n.data());
 //            ... render with n[i] samples ...;  emcv::sampling_update(p, states.data(), pixels, f, g, n.data());
 // REFERENCES Xie & Olano 2021 (Eq. 29, 31; supp. Eq. 21, 25-27); SPVG 2020 (eta 0.2, target 1e-4, N <= 64).
 #pragma once
@@ -113,7 +117,7 @@ inline void check_pixels(const void* pointer, std::size_t pixels, const char* wh
 
 /// One pixel's push, as shaders/adaptive/update.comp.glsl (n > 0 only).
 inline void push(const sampling_params&, float eta, port::EmcvEmcm2& s, float f, float g, float n) {
-    port::emcv_emcm2_push_batch(s, glm::vec2(f, g), eta, n);
+    port::emcv_history_push_cv(s, f, g, eta, n);
 }
 inline void push(const sampling_params& p, float eta, port::EmcvMovingStats& s, float f, float g, float n) {
     const float x = p.estimator == sampling_estimator::cv_notex ? port::emcv_cv_residual(f, 1.0f, g) : f;
@@ -128,9 +132,11 @@ inline float sigma2_of(const port::EmcvMovingStats& s, float eta) { return port:
 /// Pushes each pixel's frame into its history, as the renderer's adaptive-update pass does: f is the pixel's
 /// output (the mean of the taken[i] samples it took), g its in-frame control G (both as the tracked scalar,
 /// e.g. gamma-space luminance); the push is a batch of taken[i] (supp. Eq. 25-27), so the history estimates
-/// the variance of one sample. spvg pushes f, cv the pair (f, G), cv-notex f - G. A pixel with taken[i] <= 0
-/// learns nothing about its noise and is left as it is; a non-finite f or G is refused by the port (state
-/// unchanged, `rejected` + 1). g may be null for spvg only.
+/// the variance of one sample. spvg and cv-notex push f and f - G (port::emcv_moving_stats_push_batch); cv
+/// pushes the pair (f, G) through port::emcv_history_push_cv: once the history is 1 / eta frames old, a residual
+/// move beyond 5 sigma that G's move does not explain enters with the weight of a 5-sigma move and restarts
+/// the means at (f, G). A pixel with taken[i] <= 0 learns nothing about its noise and is left as it is; a
+/// non-finite f or G is refused by the port (state unchanged, `rejected` + 1). g may be null for spvg only.
 /// Throws std::invalid_argument when the parameters are invalid, the state type is not the estimator's, or a
 /// needed array is null.
 template <class State>
@@ -151,12 +157,13 @@ void sampling_update(const sampling_params& p, State* states, std::size_t pixels
     }
 }
 
-/// Each pixel's per-sample variance code, as the renderer's adaptive-samples pass writes it:
-/// port::emcv_history_sigma2_cv (cv) or port::emcv_history_sigma2_moving (spvg, cv-notex), which is
-/// port::emcv_history_no_variance() for a history younger than two frames; port::emcv_history_no_samples()
-/// where sub_pixel[i] is non-zero and the estimator has a control (cv, cv-notex: a sub-pixel kernel's scattered
-/// value is its own diffuse). spvg has no control to stand in for it and ignores sub_pixel, as the renderer
-/// does. sub_pixel may be null (no sub-pixel kernels).
+/// Each pixel's own per-sample variance code, as the renderer's adaptive-samples pass computes it before
+/// pooling (sampling_pool): port::emcv_history_sigma2_cv (cv) or port::emcv_history_sigma2_moving (spvg,
+/// cv-notex), which is port::emcv_history_no_variance() for a history younger than two frames;
+/// port::emcv_history_no_samples() where sub_pixel[i] is non-zero and the estimator has a control (cv,
+/// cv-notex: a sub-pixel kernel's scattered value is its own diffuse). spvg has no control to stand in for it
+/// and ignores sub_pixel, as the renderer does. sub_pixel may be null (no sub-pixel kernels). Pixels that do not
+/// scatter get their code from sampling_pool (its material argument).
 template <class State>
 void sampling_sigma2(const sampling_params& p, const State* states, std::size_t pixels, const std::uint8_t* sub_pixel,
                      float* out) {
@@ -169,6 +176,63 @@ void sampling_sigma2(const sampling_params& p, const State* states, std::size_t 
     const bool skips = sub_pixel != nullptr && p.estimator != sampling_estimator::spvg;
     for (std::size_t i = 0; i < pixels; ++i)
         out[i] = skips && sub_pixel[i] != 0 ? port::emcv_history_no_samples() : detail::sigma2_of(states[i], eta);
+}
+
+/// The side of the pooling tiles: the renderer's SSS tiles and workgroups (EMCV_RENDER_TILE_SIZE in
+/// shaders/render/bindings.h), aligned at multiples of it from the image's pixel (0, 0).
+inline constexpr std::size_t sampling_tile_size = 8;
+
+/// The variance codes a frame is allocated with, as the renderer's adaptive-samples pass pools them: out[i] is
+/// port::emcv_history_pool_sigma2(own[i], sum, count), sum and count accumulated by
+/// port::emcv_history_pool_add over pixel i's 3x3 neighbours (dy then dx from -1 to 1, i itself included) that
+/// lie in the image and in i's sampling_tile_size tile and have i's material; a code (negative own value) is
+/// never pooled and a pixel holding one keeps it. material[i] == 0 marks a pixel that does not scatter: it
+/// gets port::emcv_history_no_samples() (0 samples) and never pools with its neighbours; any other value is a
+/// scattering material's id. material may be null: every pixel scatters, all with the same material. own and
+/// out hold `pixels` entries in rows of `width` and may be the same array (pooling in place).
+/// Throws std::invalid_argument when own or out is null, or width is 0 or does not divide pixels.
+inline void sampling_pool(const float* own, std::size_t pixels, std::size_t width, const std::uint32_t* material,
+                          float* out) {
+    constexpr const char* where = "sampling_pool";
+    detail::check_pixels(own, pixels, where, "own must not be null");
+    detail::check_pixels(out, pixels, where, "out must not be null");
+    detail::require(width > 0 && pixels % width == 0, where, "width must be > 0 and divide the pixel count");
+    constexpr std::size_t tile = sampling_tile_size;
+    const std::size_t height = pixels / width;
+    // One tile at a time through a copy, as the shader's shared memory: every neighbour pooled lies in the
+    // pixel's tile, so writing a tile's results never changes what another tile reads (in place is safe).
+    float tile_sigma2[tile * tile];
+    std::uint32_t tile_code[tile * tile];
+    for (std::size_t y0 = 0; y0 < height; y0 += tile) {
+        for (std::size_t x0 = 0; x0 < width; x0 += tile) {
+            const std::size_t w = width - x0 < tile ? width - x0 : tile, h = height - y0 < tile ? height - y0 : tile;
+            for (std::size_t ly = 0; ly < h; ++ly)
+                for (std::size_t lx = 0; lx < w; ++lx) {
+                    const std::size_t i = (y0 + ly) * width + x0 + lx;
+                    tile_code[ly * tile + lx] = material != nullptr ? material[i] : 1u;
+                    tile_sigma2[ly * tile + lx] = own[i];
+                }
+            for (std::size_t ly = 0; ly < h; ++ly)
+                for (std::size_t lx = 0; lx < w; ++lx) {
+                    const std::size_t here = ly * tile + lx, i = (y0 + ly) * width + x0 + lx;
+                    const std::uint32_t code = tile_code[here];
+                    if (code == 0u) {
+                        out[i] = port::emcv_history_no_samples();
+                        continue;
+                    }
+                    float sum = 0.0f;
+                    std::uint32_t count = 0u;
+                    // lx - 1 and ly - 1 wrap below 0 to a huge value: the `< w`, `< h` tests skip them as the
+                    // shader skips q < 0.
+                    for (std::size_t qy = ly - 1; qy != ly + 2; ++qy)
+                        for (std::size_t qx = lx - 1; qx != lx + 2; ++qx) {
+                            if (qx >= w || qy >= h || tile_code[qy * tile + qx] != code) continue;
+                            port::emcv_history_pool_add(sum, count, tile_sigma2[qy * tile + qx]);
+                        }
+                    out[i] = port::emcv_history_pool_sigma2(tile_sigma2[here], sum, count);
+                }
+        }
+    }
 }
 
 /// The budget's histogram of sigma: port::EmcvBudgetBlock, the storage block the GPU passes share (the same
@@ -198,10 +262,14 @@ inline void budget_add(budget_histogram& h, float sigma2) noexcept {
     }
 }
 
-/// Adds every pixel's variance code (budget_add). Throws std::invalid_argument when sigma2 is null.
-inline void budget_add(budget_histogram& h, const float* sigma2, std::size_t pixels) {
+/// Adds every scattering pixel's variance code (budget_add): a pixel with material[i] == 0 does not scatter and
+/// is left out, as the GPU's samples pass leaves it (it is not an SSS pixel, so the budget is not spent on its
+/// behalf); material may be null (every pixel scatters). Throws std::invalid_argument when sigma2 is null.
+inline void budget_add(budget_histogram& h, const float* sigma2, std::size_t pixels,
+                       const std::uint32_t* material = nullptr) {
     detail::check_pixels(sigma2, pixels, "budget_add", "sigma2 must not be null");
-    for (std::size_t i = 0; i < pixels; ++i) budget_add(h, sigma2[i]);
+    for (std::size_t i = 0; i < pixels; ++i)
+        if (material == nullptr || material[i] != 0u) budget_add(h, sigma2[i]);
 }
 
 /// The scale lambda with sum_i clamp(lambda sigma_i, n_min, n_max) = budget (histogram pixels + zero pixels)
@@ -281,19 +349,24 @@ struct frame_plan {
     std::uint64_t samples = 0;  ///< the sum of the counts
 };
 
-/// One frame's plan: sampling_sigma2 into sigma2_out, then under a budget the histogram (budget_add) and
-/// budget_solve, then sampling_counts into counts_out. states, sub_pixel (may be null), sigma2_out and
-/// counts_out hold `pixels` entries in rows of `width`; frame and seed salt the budget's stochastic rounding
-/// (the renderer passes its frame index and seed). Throws std::invalid_argument as the functions it calls.
+/// One frame's plan, as the renderer's adaptive-samples, budget and burley passes: sampling_sigma2 into
+/// sigma2_out, pooled there by sampling_pool (the codes the counts are computed from), then under a budget the
+/// histogram of the scattering pixels (budget_add) and budget_solve, then sampling_counts into counts_out.
+/// states, material, sub_pixel, sigma2_out and counts_out hold `pixels` entries in rows of `width` (the image,
+/// pixels / width rows); material[i] is the pixel's material id, 0 where it does not scatter (0 samples, out of
+/// the pooling and the budget), and may be null (every pixel scatters, one material); sub_pixel may be null (no
+/// sub-pixel kernels). frame and seed salt the budget's stochastic rounding (the renderer passes its frame index
+/// and seed). Throws std::invalid_argument as the functions it calls.
 template <class State>
 frame_plan plan_frame(const sampling_params& p, const State* states, std::size_t pixels, std::size_t width,
-                      const std::uint8_t* sub_pixel, std::uint32_t frame, std::uint32_t seed, float* sigma2_out,
-                      int* counts_out) {
+                      const std::uint32_t* material, const std::uint8_t* sub_pixel, std::uint32_t frame,
+                      std::uint32_t seed, float* sigma2_out, int* counts_out) {
     sampling_sigma2(p, states, pixels, sub_pixel, sigma2_out);
+    sampling_pool(sigma2_out, pixels, width, material, sigma2_out);
     frame_plan plan;
     if (p.mode == sampling_mode::budget) {
         budget_histogram h = make_budget_histogram();
-        budget_add(h, sigma2_out, pixels);
+        budget_add(h, sigma2_out, pixels, material);
         plan.lambda = budget_solve(p, h);
     }
     plan.samples = sampling_counts(p, sigma2_out, pixels, width, plan.lambda, frame, seed, counts_out);

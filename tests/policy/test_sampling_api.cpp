@@ -87,12 +87,12 @@ TEST_CASE("variance codes: a young history takes n_max (quality) or B (budget), 
         p.estimator = e;
         std::vector<emcv::port::EmcvMovingStats> s(2, emcv::port::emcv_moving_stats_init());
         emcv::sampling_update(p, s.data(), 2, f.data(), g.data(), taken.data());
-        emcv::plan_frame(p, s.data(), 2, 2, sub, 0, 0, sigma2.data(), n.data());
+        emcv::plan_frame(p, s.data(), 2, 2, nullptr, sub, 0, 0, sigma2.data(), n.data());
         CHECK(n[0] == p.n_max);
         CHECK(n[1] == (e == emcv::sampling_estimator::spvg ? p.n_max : 0));  // spvg has no control: never skips
         p.mode = emcv::sampling_mode::budget;
         p.budget = 6;
-        const emcv::frame_plan plan = emcv::plan_frame(p, s.data(), 2, 2, sub, 0, 0, sigma2.data(), n.data());
+        const emcv::frame_plan plan = emcv::plan_frame(p, s.data(), 2, 2, nullptr, sub, 0, 0, sigma2.data(), n.data());
         CHECK(n[0] == 6);
         CHECK(plan.samples == (e == emcv::sampling_estimator::spvg ? 12u : 6u));
     }

@@ -57,7 +57,8 @@ stream_result run(emcv::sampling_estimator estimator, State init, const std::vec
     emcv_policy_test::gaussian_source rng(77);  // the same noise for both estimators where they take as many samples
     stream_result r;
     for (int t = 0; t < frames; ++t) {
-        emcv::plan_frame(p, states.data(), pixels, side, nullptr, std::uint32_t(t), 5u, sigma2.data(), n.data());
+        emcv::plan_frame(p, states.data(), pixels, side, nullptr, nullptr, std::uint32_t(t), 5u, sigma2.data(),
+                         n.data());
         r.counts.push_back(n);
         for (std::size_t i = 0; i < pixels; ++i) {
             const double light = t < switch_frame ? 1.0 : 0.0;

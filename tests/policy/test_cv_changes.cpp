@@ -1,0 +1,139 @@
+// SPDX-License-Identifier: MIT
+// cv's robust update (port::emcv_history_push_cv, which sampling_update calls for cv) on an analytic stream:
+// 1024 pixels, N = 16 samples a frame of standard deviation s = 0.1 around f = alpha G, alpha = 2, G = 0.25
+// (static), eta = sampling_eta (cv's default), 200 frames: every history is mature (count >= 1 / eta) and its
+// sigma^2 estimates s^2. With G static, C_GG = C_fG = 0 and the residual variance is C_ff; the predicted alpha
+// is mu_f / mu_G.
+//   unexplained step  f jumps by 20 s / sqrt(N) with G unchanged: the residual move e = f - mu_f has
+//            N e^2 ~ 400 s^2 > 25 sigma^2, so the frame enters with weight n' = 25 sigma^2 / e^2 and its
+//            comoment term is eta n' e^2 = 25 eta sigma^2 with sigma^2 = unbias C (unbias = (2 - eta) /
+//            (2 (1 - eta))): C' = (1 - eta)(C + 25 eta unbias C), so every pixel's sigma^2 rises by exactly
+//            (1 - eta)(1 + 25 eta unbias) (~1 + 24 eta; 2.17 at eta 0.05), up to float rounding. The plain batch
+//            push (port::emcv_emcm2_push_batch) adds eta N e^2 ~ 400 eta s^2 instead: a rise of
+//            (1 - eta)(1 + 400 eta unbias s^2 / sigma^2), ~20x at eta 0.05. The means restart at (f, G), so the
+//            next frame at the new level is read as noise: sigma^2 does not rise again.
+//   explained step   f and G step by the same factor 2 (f = alpha G still): the move d = (f - mu_f, G - mu_G) is
+//            along the control, and the rank-one update leaves C_ff - C_fG^2 / C_GG at (1 - eta) C exactly,
+//            whatever its weight. That frame's noise went into the move the control explains, so the estimate
+//            is one frame's noise short, a deficit that fades as new frames come in: over the following frames
+//            the pixel mean stays between (1 - eta) and 1 times the estimate before the step, within 6 of its
+//            relative standard deviations sqrt(eta / (2 - eta) 2 / P) (1.5% at eta 0.2), and never rises.
+#include <catch2/catch_test_macros.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include <emcv/adaptive_sampling.hpp>
+
+#include "policy_support.hpp"
+
+namespace {
+
+constexpr std::size_t pixels = 1024;
+constexpr int warm_up = 200, n_samples = 16;
+constexpr double s = 0.1, alpha = 2.0, g_before = 0.25;
+
+struct stream {
+    emcv::sampling_params p;
+    std::vector<emcv::port::EmcvEmcm2> states = std::vector<emcv::port::EmcvEmcm2>(pixels, emcv::port::emcv_emcm2_init());
+    std::vector<float> f = std::vector<float>(pixels), g = std::vector<float>(pixels);
+    std::vector<int> n = std::vector<int>(pixels, n_samples);
+    emcv_policy_test::gaussian_source rng{41};
+
+    stream() { p.estimator = emcv::sampling_estimator::cv; }
+
+    /// One frame: f = alpha G + offset + the mean of N samples of standard deviation s.
+    void frame(double g_value, double offset) {
+        for (std::size_t i = 0; i < pixels; ++i) {
+            g[i] = static_cast<float>(g_value);
+            f[i] = static_cast<float>(alpha * g_value + offset + s * rng.normal() / std::sqrt(double(n_samples)));
+        }
+        emcv::sampling_update(p, states.data(), pixels, f.data(), g.data(), n.data());
+    }
+
+    std::vector<float> sigma2() const {
+        std::vector<float> out(pixels);
+        emcv::sampling_sigma2(p, states.data(), pixels, nullptr, out.data());
+        return out;
+    }
+};
+
+double mean_of(const std::vector<float>& v) {
+    double sum = 0;
+    for (const float x : v) sum += x;
+    return sum / double(v.size());
+}
+
+}  // namespace
+
+TEST_CASE("cv's update: a jump the control does not explain raises sigma^2 by the 5-sigma weight only") {
+    stream st;
+    for (int t = 0; t < warm_up; ++t) st.frame(g_before, 0.0);
+    const double eta = emcv::sampling_eta(st.p), unbias = (2 - eta) / (2 * (1 - eta));
+    const std::vector<float> before = st.sigma2();
+    REQUIRE(st.states[0].count * eta >= 1.0);
+    const double mean_before = mean_of(before);
+    INFO("sigma^2 before the step " << mean_before << ", s^2 " << s * s);
+    REQUIRE(std::fabs(mean_before / (s * s) - 1) < 0.05);
+
+    // the same frame pushed plainly, for comparison
+    std::vector<emcv::port::EmcvEmcm2> plain = st.states;
+    const double step = 20 * s / std::sqrt(double(n_samples));
+    st.frame(g_before, step);
+    for (std::size_t i = 0; i < pixels; ++i)
+        emcv::port::emcv_emcm2_push_batch(plain[i], glm::vec2(st.f[i], st.g[i]), float(eta), float(n_samples));
+    const std::vector<float> after = st.sigma2();
+    std::vector<float> after_plain(pixels);
+    emcv::sampling_sigma2(st.p, plain.data(), pixels, nullptr, after_plain.data());
+
+    const double clipped = (1 - eta) * (1 + 25 * eta * unbias);
+    double lowest = 1e30, highest = 0, plain_mean = 0;
+    std::size_t restarted = 0;
+    for (std::size_t i = 0; i < pixels; ++i) {
+        const double ratio = double(after[i]) / before[i];
+        lowest = std::min(lowest, ratio), highest = std::max(highest, ratio);
+        plain_mean += double(after_plain[i]) / before[i] / double(pixels);
+        if (st.states[i].mean.x == st.f[i] && st.states[i].mean.y == st.g[i]) ++restarted;
+    }
+    INFO("rise of sigma^2 per pixel in [" << lowest << ", " << highest << "], the 5-sigma weight's " << clipped
+                                          << "; plain batch push: mean rise " << plain_mean);
+    CHECK(highest <= clipped * (1 + 1e-5));
+    CHECK(lowest >= clipped * (1 - 1e-5));  // 400 s^2 is beyond 25 sigma^2 on every pixel
+    CHECK(restarted == pixels);
+    // the plain push: (1 - eta)(1 + 400 eta unbias s^2 / sigma^2) ~ 20 (Jensen: E[1 / sigma^2] >= 1 / E[sigma^2])
+    CHECK(plain_mean >= 0.9 * (1 - eta) * (1 + 400 * eta * unbias * s * s / mean_before));
+
+    // the next frame at the new level is noise around the restarted means: no second rise
+    const double mean_step = mean_of(after);
+    st.frame(g_before, step);
+    const double mean_next = mean_of(st.sigma2());
+    INFO("mean sigma^2 at the step " << mean_step << ", a frame later " << mean_next);
+    CHECK(mean_next <= mean_step);
+}
+
+TEST_CASE("cv's update: a step of f and G by the same factor (f = alpha G) leaves the residual variance") {
+    stream st;
+    for (int t = 0; t < warm_up; ++t) st.frame(g_before, 0.0);
+    const double eta = emcv::sampling_eta(st.p);
+    const std::vector<float> before = st.sigma2();
+    const double mean_before = mean_of(before);
+    st.frame(2 * g_before, 0.0);  // the light doubles: f and G both double (the noise does not)
+    const std::vector<float> after = st.sigma2();
+    double worst = 0;
+    for (std::size_t i = 0; i < pixels; ++i)
+        worst = std::max(worst, std::fabs(double(after[i]) / before[i] / (1 - eta) - 1));
+    INFO("the step frame: sigma^2 / ((1 - eta) sigma^2 before) within 1 +- " << worst);
+    CHECK(worst <= 1e-4);
+    double lowest = 1e30, highest = 0;
+    for (int t = 0; t < 20; ++t) {
+        st.frame(2 * g_before, 0.0);
+        const double m = mean_of(st.sigma2()) / mean_before;
+        lowest = std::min(lowest, m), highest = std::max(highest, m);
+    }
+    const double scatter = 6 * std::sqrt(eta / (2 - eta) * 2 / double(pixels));
+    INFO("the 20 frames after: mean sigma^2 / before in [" << lowest << ", " << highest << "], scatter " << scatter);
+    CHECK(lowest >= (1 - eta) * (1 - scatter));
+    CHECK(highest <= 1 + scatter);
+}
