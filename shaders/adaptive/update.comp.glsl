@@ -5,7 +5,7 @@
 // the history estimates the per-sample variance, supp. Eq. 25-27): f = the scattered diffuse (the burley
 // output), G = the unscattered diffuse (in-frame constant control), both as displayed gamma-space luminance.
 //   spvg      moving mean/variance of f (eta 0.2)
-//   cv        EMCM over (f, G) (eta 0.05)
+//   cv        EMCM over (f, G) (eta 0.2), a change the control does not explain clipped (emcv_history_push_cv)
 //   cv-notex  moving mean/variance of r = f - G (alpha = 1, eta 0.2)
 // A pixel that took no samples learns nothing about its noise and is not pushed. A non-finite f or G is
 // refused by the port (state unchanged); a poisoned stored state is reset, never used.

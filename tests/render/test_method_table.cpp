@@ -136,7 +136,7 @@ TEST_CASE("define values are validated and written as GLSL literals of the tunab
     CHECK(defines == std::vector<std::pair<std::string, std::string>>{{"EMCV_HISTORY_N_MIN", "4"},
                                                                         {"EMCV_HISTORY_N_MAX", "16"}});
     CHECK(tunable_value(defines, "EMCV_HISTORY_N_MAX") == 16.0);
-    CHECK(tunable_value(defines, "EMCV_HISTORY_ETA_EMCM") == double(0.05f));  // the header's default
+    CHECK(tunable_value(defines, "EMCV_HISTORY_ETA_EMCM") == double(0.2f));  // not set: the header's default
     CHECK_FALSE(sampling_mode_of(defines).budget);
     add_define(defines, "EMCV_HISTORY_N_MIN=20");
     CHECK_THROWS_WITH(check_tunables(defines), ContainsSubstring("EMCV_HISTORY_N_MIN (20) exceeds EMCV_HISTORY_N_MAX (16)"));

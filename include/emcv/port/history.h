@@ -69,9 +69,12 @@ EMCV_PORT_BEGIN
 #ifndef EMCV_HISTORY_ETA_MOVING
 #define EMCV_HISTORY_ETA_MOVING 0.2f
 #endif
-/// The EMCM weight of cv (the paper's). Range: (0, 0.5].
+/// The EMCM weight of cv: SPVG's 0.2 rather than the paper's 0.05. With the per-sample variance pooled over
+/// 3x3 pixels (emcv_history_pool_sigma2), 1 / eta = 5 frames of 9 pixels estimate sigma to about 16% (residual
+/// kurtosis 9), which costs an allocation proportional to sigma about 0.1 dB, while a memory of 20 frames keeps
+/// a light change's old noise pattern for 20 frames (docs/renderer.md, "The memory"). Range: (0, 0.5].
 #ifndef EMCV_HISTORY_ETA_EMCM
-#define EMCV_HISTORY_ETA_EMCM 0.05f
+#define EMCV_HISTORY_ETA_EMCM 0.2f
 #endif
 /// Saturating frame count of a history texel, an integer exact in binary16. Range: [2, 2048] unsigned.
 #ifndef EMCV_HISTORY_MAX_COUNT
@@ -200,7 +203,8 @@ EMCV_FN float emcv_history_change_z2() { return 25.0f; }
 /// Once the history is as old as its memory (1 / eta frames, so that sigma^2 is an estimate worth testing
 /// against), a residual move e = (f - mu_f) - alpha (g - mu_G) with the predicted alpha beyond 5 sigma
 /// (n e^2 > 25 sigma^2) is a change the control does not explain: it enters with the weight of a 5-sigma move
-/// (n' = 25 sigma^2 / e^2), so a real rise of the noise still raises sigma (about 2x per such frame at eta 0.05),
+/// (n' = 25 sigma^2 / e^2), so a real rise of the noise still raises sigma^2 ((1 - eta)(1 + 25 eta unbias) per such
+/// frame: 5.3x at eta 0.2),
 /// and the means restart at (f, g), so that the frames after it are not read as noise for 1 / eta frames
 /// (docs/renderer.md, "Changes the control does not explain"). Returns false when f or g is not finite.
 EMCV_FN bool emcv_history_push_cv(EMCV_INOUT(EmcvEmcm2) s, float f, float g, float eta, float n) {
