@@ -30,6 +30,7 @@
 #include <emcv/control_variate.hpp>
 #include <emcv/emcm.hpp>
 #include <emcv/moving_stats.hpp>
+#include <emcv/adaptive_sampling.hpp>
 #include <emcv/port/history.h>
 #include <emcv/sample_count.hpp>
 
@@ -162,8 +163,9 @@ struct harness {
         glTextureSubImage2D(taken.id(), 0, 0, 0, width, height, GL_RED_INTEGER, GL_UNSIGNED_INT, n.data());
     }
 
-    /// One frame of the adaptive passes, as the renderer records them around its burley pass.
-    void frame(history& h) {
+    /// One frame of the adaptive passes, as the renderer records them around its burley pass (with `solve`,
+    /// budget mode's solve after the samples pass, which also clears the histogram).
+    void frame(history& h, bool solve = false) {
         glBindBufferBase(GL_UNIFORM_BUFFER, frame_slot, frame_ubo.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, materials_slot, materials.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, stats_slot, stats.id());
@@ -176,6 +178,7 @@ struct harness {
         glBindTextureUnit(tex_motion, motion.id());
         glBindTextureUnit(tex_diffuse, diffuse.id());
         h.record_samples();
+        if (solve) h.record_budget();
         h.record_update(scattered.id(), taken.id());
         h.end_frame(depth.id(), normal.id(), material.id(), true);
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
@@ -441,5 +444,56 @@ TEST_CASE("a poisoned history texel (NaN, Inf, negative variance) is reset and n
             }
         }
     }
+    CHECK(messenger.error_count() == 0);
+}
+
+TEST_CASE("budget mode: the GPU's histogram and lambda equal the library's from the same variances, bit for bit") {
+    emcv::gl::context ctx = emcv::test::context_or_skip();
+    emcv::gl::debug_messenger messenger;
+    harness hx;
+    emcv::gl::preprocess_options options = shader_options();
+    options.defines.emplace_back("EMCV_HISTORY_SPP_BUDGET", "6.0f");
+    history h(emcv::demo::method{kind::spvg, 0}, width, height, options, emcv_test::shader_dir());
+    REQUIRE(h.budget_mode());
+    std::vector<float> g, f;
+    for (int frame = 0; frame < 6; ++frame) {
+        light_at(frame, g, f);
+        hx.set_light(g, f);
+        std::vector<std::uint32_t> taken(pixels);
+        for (std::size_t i = 0; i < pixels; ++i) taken[i] = 1u + taken_at(i, frame);
+        hx.set_taken(taken);
+        hx.frame(h, frame < 5);  // the last frame keeps its histogram: solved below
+    }
+    // The histogram the last frame's samples pass wrote, from the variances it stored in the samples image.
+    const emcv::port::EmcvBudgetBlock gpu_histogram = h.read_budget();
+    std::vector<std::uint32_t> stored = hx.counts(h);
+    emcv::budget_histogram cpp = emcv::make_budget_histogram();
+    for (std::uint32_t bits_of_sigma2 : stored) {
+        float sigma2;
+        std::memcpy(&sigma2, &bits_of_sigma2, sizeof sigma2);
+        emcv::budget_add(cpp, sigma2);
+    }
+    for (int b = 0; b < EMCV_BUDGET_BINS; ++b) {
+        INFO("bin " << b);
+        CHECK(gpu_histogram.bin_count[b] == cpp.bin_count[b]);
+        CHECK(gpu_histogram.bin_fraction[b] == cpp.bin_fraction[b]);
+    }
+    CHECK(gpu_histogram.default_pixels == cpp.default_pixels);
+    CHECK(gpu_histogram.zero_pixels == cpp.zero_pixels);
+    std::uint32_t histogram_pixels = 0;
+    for (int b = 0; b < EMCV_BUDGET_BINS; ++b) histogram_pixels += cpp.bin_count[b];
+    CHECK(histogram_pixels == pixels);  // five frames of history: every pixel has a variance
+    // The solve on the GPU (one workgroup, shaders/adaptive/budget.comp.glsl) against the library's.
+    h.record_budget();
+    const emcv::port::EmcvBudgetBlock solved = h.read_budget();
+    emcv::sampling_params p;
+    p.mode = emcv::sampling_mode::budget;
+    p.budget = 6.0f;
+    const float lambda = emcv::budget_solve(p, cpp);
+    INFO("lambda: GPU " << solved.lambda << ", C++ " << lambda);
+    CHECK(bits(solved.lambda) == bits(lambda));
+    CHECK(solved.planned == 6.0f * float(pixels));
+    // The solve leaves the histogram empty for the next frame.
+    for (int b = 0; b < EMCV_BUDGET_BINS; ++b) CHECK(solved.bin_count[b] == 0u);
     CHECK(messenger.error_count() == 0);
 }
