@@ -22,7 +22,7 @@ DOC = os.path.join(ROOT, "docs", "demo.md")
 IMAGES = os.path.join(ROOT, "docs", "images")
 PARTS = ["passes", "summary", "no-sss", "images"]
 
-SUMMARY_ARGS = ["--scene", "light-off", "--method", "all", "--size", "256x256"]
+SUMMARY_ARGS = ["--scene", "light-off", "--method", "all,burley-8", "--spp-budget", "8", "--size", "256x256"]
 NO_SSS_ARGS = ["--scene", "no-sss", "--method", "diffuse,burley-16,separable-17", "--size", "256x256",
                "--frames", "120"]
 # The same comparison on a scene whose SSS object is visible: what the SSS passes cost when they do run.
