@@ -438,6 +438,15 @@ void register_batch(const char* precision) {
 // the adaptive-sampling policy per frame (emcv/adaptive_sampling.hpp) over a 1920 x 1080 SSS frame
 // ---------------------------------------------------------------------------------------------------------
 
+/// The policy cases' counters: the median frame time over the run (the table's number), the pixels updated
+/// per frame and the bytes of their state.
+void set_policy_counters(benchmark::State& state, std::vector<double>& frame_ms, std::size_t state_size) {
+    std::sort(frame_ms.begin(), frame_ms.end());
+    state.counters["median_frame_ms"] = frame_ms.empty() ? 0.0 : frame_ms[frame_ms.size() / 2];
+    state.counters["updates"] = static_cast<double>(pixels);
+    state.counters["state_bytes"] = static_cast<double>(state_size * pixels);
+}
+
 /// One frame of the policy: plan (variance codes, histogram and solve under a budget, counts), then the
 /// update with this frame's (f, G) and counts. Timed with std::chrono::steady_clock per frame (manual time);
 /// the counter median_frame_ms is the median over the run's frames.
@@ -468,10 +477,7 @@ void register_policy(const char* name, emcv::sampling_estimator estimator, emcv:
             state.SetIterationTime(took.count());
             frame_ms.push_back(took.count() * 1e3);
         }
-        std::sort(frame_ms.begin(), frame_ms.end());
-        state.counters["median_frame_ms"] = frame_ms.empty() ? 0.0 : frame_ms[frame_ms.size() / 2];
-        state.counters["updates"] = static_cast<double>(pixels);
-        state.counters["state_bytes"] = static_cast<double>(sizeof(State) * pixels);
+        set_policy_counters(state, frame_ms, sizeof(State));
     })->UseManualTime()->Unit(benchmark::kMillisecond);
 }
 
@@ -496,10 +502,7 @@ void register_policy_copy(const char* name) {
             state.SetIterationTime(took.count());
             frame_ms.push_back(took.count() * 1e3);
         }
-        std::sort(frame_ms.begin(), frame_ms.end());
-        state.counters["median_frame_ms"] = frame_ms.empty() ? 0.0 : frame_ms[frame_ms.size() / 2];
-        state.counters["updates"] = static_cast<double>(pixels);
-        state.counters["state_bytes"] = static_cast<double>(sizeof(State) * pixels);
+        set_policy_counters(state, frame_ms, sizeof(State));
     })->UseManualTime()->Unit(benchmark::kMillisecond);
 }
 

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "headless_run.hpp"
 
+#include "render/tunables.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -161,7 +163,7 @@ run_result run_headless(const scene& s, const options& o, int frames) {
 
     if (o.out) {
         write_file_atomically(*o.out / "metrics.csv", metrics_csv(result.rows));
-        write_file_atomically(*o.out / "metrics.json", metrics_json(result.rows));
+        write_file_atomically(*o.out / "metrics.json", metrics_json(result.rows, sampling_mode_of(o.defines).text()));
     }
     return result;
 }

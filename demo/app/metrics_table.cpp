@@ -49,8 +49,9 @@ std::string metrics_csv(const std::vector<metrics_row>& rows) {
     return out.str();
 }
 
-std::string metrics_json(const std::vector<metrics_row>& rows) {
+std::string metrics_json(const std::vector<metrics_row>& rows, const std::string& sampling) {
     nlohmann::json j;
+    if (!sampling.empty()) j["sampling"] = sampling;
     j["columns"] = metrics_columns;
     j["rows"] = nlohmann::json::array();
     for (const metrics_row& r : rows) {

@@ -38,9 +38,10 @@ public:
 /// CSV text: the header line, then one line per row. An undefined value is an empty field; +inf is "inf".
 std::string metrics_csv(const std::vector<metrics_row>& rows);
 
-/// JSON text: {"columns": [...], "rows": [{column: value, ...}, ...]}. JSON has no infinity: +inf and
-/// undefined values are null (the reference's PSNR against itself; see docs/demo.md).
-std::string metrics_json(const std::vector<metrics_row>& rows);
+/// JSON text: {"columns": [...], "rows": [{column: value, ...}, ...]}, and "sampling" (the adaptive methods'
+/// mode, e.g. "budget 8 spp" or "target variance 0.0001") when given. JSON has no infinity: +inf and undefined
+/// values are null (the reference's PSNR against itself; see docs/demo.md).
+std::string metrics_json(const std::vector<metrics_row>& rows, const std::string& sampling = {});
 
 /// Writes `text` to `path` through a temporary sibling and a rename. Throws output_error.
 void write_file_atomically(const std::filesystem::path& path, const std::string& text);

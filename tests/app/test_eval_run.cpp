@@ -27,7 +27,7 @@ namespace {
 const std::string data_dir = EMCV_APP_TEST_DATA;
 
 struct row {
-    std::string method, lights;
+    std::string method, lights, sampling;
     int frame = 0, max_spp = 0;
     double sss_ms = 0.0, frame_ms = 0.0, mean_spp = 0.0;
     std::size_t sss_pixels = 0;
@@ -42,12 +42,12 @@ std::vector<row> run_eval(const std::string& args) {
     std::istringstream in(r.out);
     std::string line;
     REQUIRE(std::getline(in, line));
-    REQUIRE(line == "scene,width,height,sss_scale,method,frame,sss_ms,frame_ms,mean_spp,max_spp,sss_pixels,lights");
+    REQUIRE(line == "scene,width,height,sss_scale,method,frame,sss_ms,frame_ms,mean_spp,max_spp,sss_pixels,lights,sampling");
     std::vector<row> rows;
     while (std::getline(in, line)) {
         const std::vector<std::string> f = emcv_test::split_fields(line, ',');
         INFO(line);
-        REQUIRE(f.size() == 12);
+        REQUIRE(f.size() == 13);
         row x;
         x.method = f[4];
         x.frame = std::stoi(f[5]);
@@ -57,6 +57,7 @@ std::vector<row> run_eval(const std::string& args) {
         x.max_spp = std::stoi(f[9]);
         x.sss_pixels = static_cast<std::size_t>(std::stoull(f[10]));
         x.lights = f[11];
+        x.sampling = f[12];
         rows.push_back(x);
     }
     return rows;
@@ -144,4 +145,16 @@ TEST_CASE("emcv-eval: --sss-scale shrinks the kernels under a pixel and cv takes
     CHECK(full["cv"] >= 1.0);  // tiny.json's kernels cover pixels at this size: at least the floor N_MIN
     CHECK(shrunk["cv"] == 0.0);
     CHECK(shrunk["spvg"] >= 1.0);  // spvg has no control to stand in: it keeps sampling
+}
+
+TEST_CASE("emcv-eval: a budget run spends B per SSS pixel and every row names the mode", "[app][eval][gl]") {
+    const std::string args = "--scene '" + data_dir + "/tiny.json' --size 48x48 --method spvg,cv --seed 3 --frames 4";
+    for (const row& x : run_eval(args)) CHECK(x.sampling == "target variance 0.0001");
+    for (const row& x : run_eval(args + " --spp-budget 6")) {
+        INFO(x.method << " frame " << x.frame);
+        CHECK(x.sampling == "budget 6 spp");
+        // Every frame spends B (the first frames' pixels without a variance take B; from frame 2 the solve):
+        // a few hundred SSS pixels round stochastically within a few hundredths of a sample.
+        if (x.sss_pixels > 0) CHECK(std::fabs(x.mean_spp - 6.0) <= 0.12);
+    }
 }

@@ -57,6 +57,9 @@ TEST_CASE("metrics.json carries every column, inf and undefined as null", "[app]
     CHECK(j["rows"][2]["psnr_sss_db"].is_null());
     CHECK(j["rows"][2]["temporal_error"].get<double>() == 0.125);
     CHECK(j["rows"][3]["method"] == "reference");
+    CHECK_FALSE(j.contains("sampling"));
+    const nlohmann::json with_mode = nlohmann::json::parse(app::metrics_json(sample_rows(), "budget 8 spp"));
+    CHECK(with_mode["sampling"] == "budget 8 spp");
 }
 
 TEST_CASE("values round-trip through the CSV text", "[app][metrics]") {

@@ -37,8 +37,9 @@ std::string usage_text() {
            "                 [--seed S] [--heatmaps F[,F...] --heatmap-dir DIR] [--approximate-cdf]\n"
            "                 [--spp-budget B | --target-variance V] [--define NAME=VALUE ...]\n"
            "Renders the methods side by side, frame by frame (no reference), and prints one CSV row per frame\n"
-           "and method: scene,width,height,sss_scale,method,frame,sss_ms,frame_ms,mean_spp,max_spp,sss_pixels,lights\n"
-           "(lights: name=intensity;... of the scene's light curves at the frame).\n"
+           "and method: scene,width,height,sss_scale,method,frame,sss_ms,frame_ms,mean_spp,max_spp,sss_pixels,lights,\n"
+           "sampling (lights: name=intensity;... of the scene's light curves at the frame; sampling: the adaptive\n"
+           "methods' mode, \"budget B spp\" or \"target variance V\").\n"
            "--sss-scale multiplies every scattering material's mean free path (the radius on screen).\n"
            "--heatmaps writes <method>.f<F>.samples.csv (and .alpha.csv for cv) under DIR, top row first.\n"
            "--define sets a tunable of the port headers for every shader (as emcv-demo --define).\n" +

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "eval_options.hpp"
+#include "render/tunables.hpp"
 #include "gl/context.hpp"
 #include "gl/debug.hpp"
 #include "render/renderer.hpp"
@@ -54,7 +55,9 @@ int run(const eval::options& o) {
     std::vector<demo::renderer> renderers;
     for (const demo::method& m : o.methods) renderers.emplace_back(s, m, ro);
 
-    std::printf("scene,width,height,sss_scale,method,frame,sss_ms,frame_ms,mean_spp,max_spp,sss_pixels,lights\n");
+    // The adaptive methods' sampling mode, one value per run, repeated on each row so that rows stand alone.
+    const std::string sampling = demo::sampling_mode_of(o.defines).text();
+    std::printf("scene,width,height,sss_scale,method,frame,sss_ms,frame_ms,mean_spp,max_spp,sss_pixels,lights,sampling\n");
     for (int frame = 0; frame < frames; ++frame) {
         const bool dump = std::find(o.heatmap_frames.begin(), o.heatmap_frames.end(), frame) != o.heatmap_frames.end();
         std::string lights;  // "name=intensity;...": the scene's curves at this frame (scene::curve::at)
@@ -63,9 +66,9 @@ int run(const eval::options& o) {
         for (std::size_t i = 0; i < renderers.size(); ++i) {
             const demo::frame_stats& st = renderers[i].render(frame);
             const std::string name = o.methods[i].name();
-            std::printf("%s,%d,%d,%g,%s,%d,%.4f,%.4f,%.3f,%d,%zu,%s\n", s.name.c_str(), o.width, o.height,
+            std::printf("%s,%d,%d,%g,%s,%d,%.4f,%.4f,%.3f,%d,%zu,%s,%s\n", s.name.c_str(), o.width, o.height,
                         static_cast<double>(o.sss_scale), name.c_str(), frame, st.sss_ms, st.frame_ms, st.mean_spp,
-                        st.max_spp, st.sss_pixels, lights.c_str());
+                        st.max_spp, st.sss_pixels, lights.c_str(), sampling.c_str());
             if (dump) {
                 const std::string stem = name + ".f" + std::to_string(frame);
                 write_csv(o.heatmap_dir / (stem + ".samples.csv"), renderers[i].sample_counts());
