@@ -11,6 +11,7 @@
 //                 and cv and spvg score above burley-B (same samples, spent where the noise is)
 //   budget switch budget mode across the sphere's switch: cv scores above burley-B over the run, above spvg over
 //                 the 30 frames after the switch, and spends B within 2% in every frame
+//   built-ins     budget mode on the built-in static and light-off: cv above burley-B over frames 2-59
 //   far           the built-in `far` scene (every kernel under a pixel): cv and cv-notex take 0 samples
 // PSNR as emcv-demo reports it: display images (tonemapped, sRGB) against the reference's, per frame, averaged.
 // The switch uses a sphere built in code rather than the built-in light-off, so that its bounds do not follow the
@@ -187,6 +188,23 @@ TEST_CASE("budget mode across a light switch: cv beats burley-B over the run and
     CHECK(run_cv > run_uniform);
     CHECK(after_cv > after_spvg);  // spvg sends the budget to every pixel the switch changed
     for (int f = 2; f < frames; ++f) CHECK(std::fabs(cv.mean_spp[std::size_t(f)] - 8.0) <= 0.16);
+    CHECK(messenger.error_count() == 0);
+}
+
+TEST_CASE("budget mode on the built-in static and light-off: cv beats burley-B at equal samples") {
+    emcv::gl::context ctx = emcv::test::context_or_skip();
+    emcv::gl::debug_messenger messenger;
+    for (const char* name : {"static", "light-off"}) {
+        INFO("scene " << name);
+        const scene s = load_scene_argument(name);
+        constexpr int frames = 60;
+        const run_result uniform = render_all(s, "burley-8", frames), ref = render_all(s, "reference", frames);
+        const run_result cv = render_all(s, "cv", frames, 8.0);
+        const double db_uniform = mean_psnr(uniform, ref, 2, frames), db_cv = mean_psnr(cv, ref, 2, frames);
+        INFO("frames 2-59: burley-8 " << db_uniform << " dB, cv " << db_cv << " dB");
+        CHECK(db_cv > db_uniform);
+        for (int f = 2; f < frames; ++f) CHECK(std::fabs(cv.mean_spp[std::size_t(f)] - 8.0) <= 0.16);
+    }
     CHECK(messenger.error_count() == 0);
 }
 
