@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The summary's cv-against-spvg line after a light change (issue 9): which frames it averages, and the three
+// The summary's cv-against-baseline line after a light change: which frames it averages, and the three
 // numbers it prints, on hand-made rows whose means are known exactly.
 #include <catch2/catch_test_macros.hpp>
 

@@ -1,18 +1,18 @@
 // SPDX-License-Identifier: MIT
 // The estimator decides N, not a floor: a synthetic 64x64 stream under a quality target (1e-4, N in [1, 64]),
 // each pixel's control G_i in [0.4, 0.6] and its per-sample value G_i (1 + rho z), rho = 0.089, so the
-// per-sample variance G_i^2 rho^2 asks for N = G_i^2 rho^2 / 1e-4 in [12.7, 28.5]. The light goes off at frame
-// 150 (G -> 0, f -> 0). Frame t's plan reads the history before frame t's push, as the renderer's passes do.
-//   static (frames 100-149)  G is constant, so the EMCM's C_GG = C_fG = 0, alpha = 0 and cv's residual variance
+// per-sample variance G_i^2 rho^2 asks for N = G_i^2 rho^2 / 1e-4 in [12.7, 28.5]. 100 frames; the light goes off
+// at frame 50 (G -> 0, f -> 0). Frame t's plan reads the history before frame t's push, as the renderer's passes do.
+//   static (frames 20-49)  G is constant, so the EMCM's C_GG = C_fG = 0, alpha = 0 and cv's residual variance
 //            is C_ff: spvg and cv estimate the same per-sample variance (unbiased in steady state, supp. Eq.
 //            25-27) and their mean counts agree. They differ only by the noise of their estimates through ceil
 //            and the clamps, and by the lag term of the batch push (test_per_sample_variance.cpp: eta (E[N] E[1/N]
 //            - 1) / 2, about 2% for spvg's N fluctuating by its estimate's ~47% relative noise): within 10%.
-//            The window starts at frame 100: cv's EMCM (eta 0.05) reaches (1 - 0.95^99) = 99.4% of its steady
-//            comoment by then (at frame 20 it would be at 62%: cv samples less while it warms up).
+//            The window starts at frame 20: both histories (eta 0.2, the defaults) reach 1 - 0.8^19 = 98.6% of
+//            their steady comoment by then.
 //            Both means also lie within 5% of mean_i G_i^2 rho^2 / target (+1 for the ceil): the batch scaling
 //            is what makes them estimate the per-sample variance at all.
-//   switch   (frames 150-179) spvg sees the step of f as variance (N d^2 with d ~ 0.5: ~8000 times the target)
+//   switch   (frames 50-79) spvg sees the step of f as variance (N d^2 with d ~ 0.5: ~8000 times the target)
 //            and samples at n_max; cv's pushes (f, G) = (0, 0) are collinear with its mean (mu_f, mu_G)
 //            (both decay by (1 - eta) per frame), so C_ff - C_fG^2 / C_GG stays the pre-switch residual times
 //            (1 - eta)^k: each pixel's count never rises after the switch, and cv takes at most half of spvg's
@@ -30,7 +30,7 @@
 namespace {
 
 constexpr std::size_t side = 64, pixels = side * side;
-constexpr int frames = 180, switch_frame = 150;
+constexpr int frames = 100, switch_frame = 50;
 constexpr double rho = 0.089;
 
 struct stream_result {
@@ -84,7 +84,7 @@ TEST_CASE("the history's variance, not a floor, sets N: cv and spvg agree on a s
     const stream_result spvg = run(emcv::sampling_estimator::spvg, emcv::port::emcv_moving_stats_init(), g0);
     const stream_result cv = run(emcv::sampling_estimator::cv, emcv::port::emcv_emcm2_init(), g0);
 
-    const double spvg_static = spvg.mean_in(100, switch_frame - 1), cv_static = cv.mean_in(100, switch_frame - 1);
+    const double spvg_static = spvg.mean_in(20, switch_frame - 1), cv_static = cv.mean_in(20, switch_frame - 1);
     const double spvg_after = spvg.mean_in(switch_frame, switch_frame + 29),
                  cv_after = cv.mean_in(switch_frame, switch_frame + 29);
     INFO("static: spvg " << spvg_static << ", cv " << cv_static << ", asked " << asked << "; after the switch: spvg "

@@ -31,7 +31,7 @@ constexpr float radius_per_shape_distance = 16.57f;
 
 }  // namespace
 
-TEST_CASE("the built-in scene names are the eight scenes of issue 8, sorted, without the schema") {
+TEST_CASE("the built-in scene names are the eight demo scenes, sorted, without the schema") {
     CHECK(builtin_scene_names() ==
           std::vector<std::string>{"club", "far", "flicker", "light-off", "mixed", "moving", "no-sss", "static"});
 }
