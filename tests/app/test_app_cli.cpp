@@ -90,6 +90,14 @@ TEST_CASE("unknown and malformed flags: one line, exit 2, nothing written", "[ap
     check_rejected(scene + "--define EMCV_HISTORY_N_MAX=0", 2, "EMCV_HISTORY_N_MAX takes an integer in [1, 1024]", out);
     check_rejected(scene + "--define EMCV_HISTORY_TARGET=1e-4x", 2, "EMCV_HISTORY_TARGET takes a number in (0, 1]", out);
     check_rejected(scene + "--define EMCV_HISTORY_N_MAX", 2, "--define: expected NAME=VALUE", out);
+    check_rejected(scene + "--spp-budget 8 --target-variance 1e-4", 2,
+                   "--target-variance: cannot be combined with --spp-budget", out);
+    check_rejected(scene + "--spp-budget 0", 2, "--spp-budget: expected a number in (0, 1024]", out);
+    check_rejected(scene + "--spp-budget eight", 2, "--spp-budget: expected a number in (0, 1024]", out);
+    check_rejected(scene + "--target-variance -1", 2, "--target-variance: expected a number in (0, 1]", out);
+    check_rejected(scene + "--spp-budget 65", 2, "a budget of 65 samples per pixel exceeds EMCV_HISTORY_N_MAX (64)", out);
+    check_rejected(scene + "--define EMCV_HISTORY_N_MIN=9 --define EMCV_HISTORY_N_MAX=8", 2,
+                   "EMCV_HISTORY_N_MIN (9) exceeds EMCV_HISTORY_N_MAX (8)", out);
     check_rejected(scene + "--list-methods=yes", 2, "--list-methods: takes no value", out);
     check_rejected(scene + "--window", 2, "--window: cannot be combined with --out", out);
     check_rejected(scene + "--no-frames --exr", 2, "--no-frames: cannot be combined with --exr", out);
