@@ -11,6 +11,7 @@
 #            method: samples per SSS pixel (and as a ratio of spvg's) and PSNR over the 30 frames from the first
 #            change and over every frame from it to the end.
 # Usage: bash scripts/eval/adaptive_tables.sh budget|quality [BUILD_DIR (default build)] [WxH (default 96x96)] [SCENE...]
+#        EXTRA='--define NAME=VALUE ...' passes more emcv-demo flags to every run (a tunable's other value).
 #        (SCENE: a built-in name or a scene file; default: static (budget only), light-off and
 #        demo/scenes/variations/*.json)
 set -euo pipefail
@@ -37,7 +38,8 @@ trap 'rm -rf "$out"' EXIT
 render() {  # NAME SCENE ARGS...
   local name=$1 scene=$2
   shift 2
-  "$demo" --scene "$scene" --size "$size" --out "$out/$name" --no-frames "$@" > "$out/$name.summary"
+  # shellcheck disable=SC2086 # EXTRA is a list of flags
+  "$demo" --scene "$scene" --size "$size" --out "$out/$name" --no-frames "$@" ${EXTRA:-} > "$out/$name.summary"
 }
 
 if [ "$table" = budget ]; then
