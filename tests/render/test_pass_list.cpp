@@ -10,6 +10,7 @@
 #include "../gpu/gl_test_support.hpp"
 #include "gl/debug.hpp"
 #include "render/renderer.hpp"
+#include "render/tunables.hpp"
 #include "render_test_support.hpp"
 #include "scene/load.hpp"
 
@@ -32,6 +33,16 @@ TEST_CASE("pass lists of scenes built in code") {
     CHECK(pass_list(sphere, method{method::kind::separable, 17}, 0, 64, 48) ==
           std::vector<std::string>{"gbuffer", "shadow:key", "shadow:spot", "lighting", "sss-tiles", "sss-separable-h",
                                    "sss-separable-v", "composite"});
+    // The adaptive methods: their samples and update passes around sss-burley; a budget solves its scale between
+    // the samples pass (which writes the histogram) and sss-burley (which spends it).
+    CHECK(pass_list(sphere, method{method::kind::cv, 0}, 0, 64, 48) ==
+          std::vector<std::string>{"gbuffer", "shadow:key", "shadow:spot", "lighting", "sss-tiles", "sss-adaptive-samples",
+                                   "sss-burley", "sss-adaptive-update", "composite"});
+    CHECK(pass_list(sphere, method{method::kind::cv, 0}, 0, 64, 48, true) ==
+          std::vector<std::string>{"gbuffer", "shadow:key", "shadow:spot", "lighting", "sss-tiles", "sss-adaptive-samples",
+                                   "sss-adaptive-budget", "sss-burley", "sss-adaptive-update", "composite"});
+    // A budget changes nothing for the methods that take no adaptive passes.
+    CHECK(pass_list(sphere, burley16, 0, 64, 48, true) == pass_list(sphere, burley16, 0, 64, 48));
     // diffuse never scatters.
     CHECK(pass_list(sphere, method{method::kind::diffuse, 0}, 0, 64, 48) ==
           std::vector<std::string>{"gbuffer", "shadow:key", "shadow:spot", "lighting", "composite"});
@@ -110,6 +121,14 @@ TEST_CASE("the renderer records exactly the pass list", "[image-files]") {
             if (!has_pass(recorded, "sss-")) {
                 CHECK(stats.sss_ms == 0.0);
                 CHECK(stats.sss_pixels == 0);
+            }
+            if (is_adaptive(m)) {  // budget mode records its solve, and exactly the list printed for it
+                render_options budget = options;
+                add_define(budget.defines, "EMCV_HISTORY_SPP_BUDGET=4");
+                renderer rb(s, m, budget);
+                std::vector<std::string> recorded_budget;
+                for (const pass_time& p : rb.render(0).passes) recorded_budget.emplace_back(p.name);
+                CHECK(recorded_budget == pass_list(s, m, 0, 32, 24, true));
             }
         }
     }
