@@ -199,6 +199,14 @@ TEST_CASE("the pass list (--print-passes) is printed per method without a GL con
     CHECK(r.out.find("method burley-8:\n  frames 0-2: gbuffer, shadow:key, lighting, sss-tiles, sss-burley, "
                      "composite\n") != std::string::npos);
     CHECK(r.out.find("method reference") == std::string::npos);
+    // --spp-budget adds the adaptive methods' budget solve, and only theirs.
+    const emcv_test::command_result b = run_demo(scene + "--method cv,burley-8 --spp-budget 8", "EMCV_GL_PLATFORMS=none");
+    INFO(b.err);
+    REQUIRE(b.exit_code == 0);
+    CHECK(b.out.find("method cv:\n  frames 0-2: gbuffer, shadow:key, lighting, sss-tiles, sss-adaptive-samples, "
+                     "sss-adaptive-budget, sss-burley, sss-adaptive-update, composite\n") != std::string::npos);
+    CHECK(b.out.find("method burley-8:\n  frames 0-2: gbuffer, shadow:key, lighting, sss-tiles, sss-burley, "
+                     "composite\n") != std::string::npos);
 }
 
 TEST_CASE("print-passes walks the renderer's planner: the reference records no SSS pass while it reuses", "[app][cli]") {
