@@ -8,7 +8,9 @@
 #include "emcv/port/sss.h"
 #include "render/gbuffer_read.h"
 #include "render/tiles.h"
-#include "adaptive/budget_block.h"
+#include "emcv/port/bindings.h"
+#include "emcv/port/history.h"
+#include "adaptive/bindings.h"
 
 layout(local_size_x = EMCV_RENDER_TILE_SIZE, local_size_y = EMCV_RENDER_TILE_SIZE) in;
 
@@ -19,6 +21,14 @@ layout(r32ui, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_COUNT)) writeonly unifor
 // sss-adaptive-budget solved from the same frame's variances.
 layout(r32ui, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_SAMPLES)) readonly uniform uimage2D adaptive_samples;
 
+// Budget mode's scale lambda: the first member of the budget block (emcv/port/budget.h, EmcvBudgetBlock) that
+// sss-adaptive-budget solved this frame. Declared alone, 4 bytes: without a budget the slot holds another buffer
+// (the separable kernels', never read then), and a block larger than the bound buffer is undefined behaviour even
+// unread (llvmpipe's LeakSanitizer run crashed at exit with the whole block declared here).
+layout(std430, EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_BUDGET)) readonly buffer BudgetScale {
+    float lambda;
+} budget_scale;
+
 shared uint tile_sample_sum;
 shared uint tile_sample_max;
 
@@ -27,7 +37,7 @@ uint adaptive_count(ivec2 p) {
     uint stored = imageLoad(adaptive_samples, p).x;
     if (!emcv_history_budget_mode()) return stored;
     float u = emcv_budget_u(uint(p.x), uint(p.y), frame.counters.x, frame.counters.y);
-    return uint(emcv_history_count_spend(uintBitsToFloat(stored), budget.lambda, u));
+    return uint(emcv_history_count_spend(uintBitsToFloat(stored), budget_scale.lambda, u));
 }
 
 /// Scatters pixel p; returns the samples it took (0 off screen and for non-scattering pixels).

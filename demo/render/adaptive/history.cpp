@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "history.hpp"
 
+#include <cstddef>
 #include <cstring>
 #include <stdexcept>
 
@@ -25,6 +26,9 @@ static_assert(EMCV_ADAPTIVE_IMG_SAMPLES != EMCV_RENDER_IMG_SSS_OUT && EMCV_ADAPT
               EMCV_ADAPTIVE_IMG_HISTORY_A != EMCV_RENDER_IMG_COUNT && EMCV_ADAPTIVE_IMG_HISTORY_B != EMCV_RENDER_IMG_COUNT &&
               EMCV_ADAPTIVE_IMG_HISTORY_A != EMCV_ADAPTIVE_IMG_SAMPLES && EMCV_ADAPTIVE_IMG_HISTORY_B != EMCV_ADAPTIVE_IMG_SAMPLES &&
               EMCV_ADAPTIVE_IMG_HISTORY_A != EMCV_ADAPTIVE_IMG_HISTORY_B);
+
+// The burley pass reads lambda alone through a 4-byte block at the budget's slot (shaders/render/sss_burley.comp.glsl).
+static_assert(offsetof(emcv::port::EmcvBudgetBlock, lambda) == 0);
 
 namespace emcv::demo::adaptive {
 
