@@ -37,6 +37,13 @@ namespace {
     throw tunable_error("--define: " + why + ", got '" + std::string(text) + "'");
 }
 
+/// The tunable called `name`, or nullptr.
+const tunable* find_tunable(std::string_view name) {
+    for (const tunable& t : tunables())
+        if (t.name == name) return &t;
+    return nullptr;
+}
+
 std::string range_text(const tunable& t) {
     char out[96];
     std::snprintf(out, sizeof out, "%s%g, %g]", t.minimum_exclusive ? "(" : "[", t.minimum, t.maximum);
@@ -49,9 +56,7 @@ std::pair<std::string, std::string> parse_define(std::string_view text) {
     const std::size_t eq = text.find('=');
     if (eq == std::string_view::npos || eq == 0 || eq + 1 == text.size()) fail(text, "expected NAME=VALUE");
     const std::string name(text.substr(0, eq)), value(text.substr(eq + 1));
-    const tunable* found = nullptr;
-    for (const tunable& t : tunables())
-        if (t.name == name) found = &t;
+    const tunable* found = find_tunable(name);
     if (found == nullptr) {
         std::string known;
         for (const tunable& t : tunables()) known += (known.empty() ? "" : ", ") + std::string(t.name);
@@ -86,9 +91,7 @@ void add_define(std::vector<std::pair<std::string, std::string>>& defines, std::
 }
 
 double tunable_value(const define_list& defines, std::string_view name) {
-    const tunable* found = nullptr;
-    for (const tunable& t : tunables())
-        if (t.name == name) found = &t;
+    const tunable* found = find_tunable(name);
     if (found == nullptr) throw tunable_error("tunable_value: '" + std::string(name) + "' is not a tunable");
     for (auto it = defines.rbegin(); it != defines.rend(); ++it)
         if (it->first == name) return std::strtod(it->second.c_str(), nullptr);  // stops at the literal's suffix

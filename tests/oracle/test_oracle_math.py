@@ -46,6 +46,19 @@ class Moments(unittest.TestCase):
             oracle.moments(np.zeros(10))
 
 
+class Kurtosis(unittest.TestCase):
+    def test_known_distributions(self):
+        # Two pixels over K = 4 samples: +-1 (two-point, kurtosis 1) and (0, 0, 0, 2) (m2 = 3/4, m4 = 21/16:
+        # kurtosis 21/16 / (9/16) = 7/3); a third pixel never moves and is left out. The median of 1 and 7/3 is 5/3.
+        lum = np.array([[1.0, 0.0, 5.0], [-1.0, 0.0, 5.0], [1.0, 0.0, 5.0], [-1.0, 2.0, 5.0]]).reshape(4, 1, 3)
+        mask = np.ones((1, 3), dtype=bool)
+        self.assertAlmostEqual(oracle.median_kurtosis(lum, mask), 5.0 / 3.0, places=12)
+
+    def test_nothing_moves_is_an_error(self):
+        with self.assertRaises(ValueError):
+            oracle.median_kurtosis(np.ones((4, 1, 2)), np.ones((1, 2), dtype=bool))
+
+
 class ClampedAllocation(unittest.TestCase):
     def check(self, sigma, budget, floor, cap, expected_lambda, expected_n, expected_ratio):
         lam, n, ratio = oracle.allocation_gain(sigma, budget, floor, cap)

@@ -86,6 +86,7 @@ void history::record_budget() {
 }
 
 emcv::port::EmcvBudgetBlock history::read_budget() const {
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the passes' atomics and stores before the read-back
     emcv::port::EmcvBudgetBlock b{};
     glGetNamedBufferSubData(budget_.id(), 0, sizeof b, &b);
     return b;
@@ -105,21 +106,20 @@ void history::record_samples() {
         glBindImageTexture(EMCV_ADAPTIVE_IMG_HISTORY_B, b_[cur].id(), 0, GL_FALSE, 0, GL_READ_WRITE, format_b);
     glBindImageTexture(EMCV_ADAPTIVE_IMG_SAMPLES, samples_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     glDispatchComputeIndirect(0);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    // The burley pass reads the images; under a budget the solve reads the histogram's atomics.
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 void history::record_update(GLuint scattered, GLuint taken) {
     const std::size_t cur = static_cast<std::size_t>(current_);
     update_program_.use();
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMCV_ADAPTIVE_BUDGET, budget_.id());
     glBindTextureUnit(EMCV_RENDER_TEX_SSS_IN, scattered);
     glBindImageTexture(EMCV_ADAPTIVE_IMG_HISTORY_A, a_[cur].id(), 0, GL_FALSE, 0, GL_READ_WRITE, format_a(layout_));
     if (layout_ == history_layout::emcm2)
         glBindImageTexture(EMCV_ADAPTIVE_IMG_HISTORY_B, b_[cur].id(), 0, GL_FALSE, 0, GL_READ_WRITE, format_b);
     glBindImageTexture(EMCV_RENDER_IMG_COUNT, taken, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
     glDispatchComputeIndirect(0);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
-                    GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
 
 void history::end_frame(GLuint depth, GLuint normal, GLuint material, bool updated) {

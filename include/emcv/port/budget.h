@@ -5,18 +5,18 @@
 //
 // ABOUT      Over pixels i with per-sample variances sigma_i^2 and counts N_i the frame's mean squared error is
 //            (1/P) sum sigma_i^2 / N_i; for a fixed total sum N_i = P B it is smallest at N_i = B sigma_i / E[sigma]
-//            (Lagrange / Neyman allocation, docs/renderer.md "Spending a budget"), E[sigma]^2 / B against
+//            (Lagrange / Neyman allocation, docs/renderer.md "Per-sample variance and the two modes"), E[sigma]^2 / B against
 //            uniform sampling's E[sigma^2] / B. With a floor n_min and a cap n_max the counts are
 //                N_i = clamp(lambda sigma_i, n_min, n_max)
 //            with lambda the scale that makes their sum the budget, found by bisection over a histogram of
-//            sigma (one frame late: the frame that writes the histogram is the frame before the one that
-//            spends it; the histogram holds the sigma each history will be read with). Counts are rounded
-//            stochastically (floor(x) + [u < frac(x)]) so that the mean is exact in expectation.
+//            sigma, written and solved in the frame that spends it (between the adaptive-samples pass and the
+//            burley pass). Counts are rounded stochastically (floor(x) + [u < frac(x)]) so that the mean is
+//            exact in expectation.
 //            The histogram: EMCV_BUDGET_BINS bins, 8 per octave of sigma from 2^-24 to 2^8, split on the
 //            float's bits (no transcendental: the CPU and the GPU bin alike, bit for bit). Each bin keeps the
 //            count and the sum of the next 10 mantissa bits, so that its sum of sigma is known to 2^-13 of
 //            sigma (32-bit sums up to 4M pixels per bin).
-//            The solve (emcv_budget_solve in C++, shaders/adaptive/budget.comp.glsl on the GPU) bisects the
+//            The solve (emcv::budget_solve in C++, shaders/adaptive/budget.comp.glsl on the GPU) bisects the
 //            bit pattern of lambda (positive floats order as their bits) and sums the bins in the same pairwise
 //            tree, so both give the same lambda.
 // USAGE      uint bin = emcv_budget_bin(sigma); count[bin] += 1; fraction[bin] += emcv_budget_fraction(sigma);
@@ -34,15 +34,16 @@ EMCV_PORT_BEGIN
 /// The lowest bin's lower edge, 2^-24: a sigma under it (0 included) counts as that edge, where every
 /// budget within [n_min, n_max] puts it at n_min anyway.
 #define EMCV_BUDGET_SIGMA_LOW_EXPONENT (-24)
-/// Bisection steps of lambda's bit pattern: 2^31 patterns span the search range (docs/renderer.md).
+/// Bisection steps of lambda's bit pattern: the search range holds under 2^29 patterns
+/// (emcv_budget_lambda_low_bits), so 32 halvings end on adjacent floats.
 #define EMCV_BUDGET_SOLVE_STEPS 32
 
 /// The histogram and the solved scale (storage buffer; the same struct in C++). Each member is 4 bytes, so
 /// std430 and C++ lay it out alike.
 struct EmcvBudgetBlock {
-    float lambda;         ///< the scale the next frame spends with (written by the solve)
+    float lambda;         ///< the scale this frame's burley pass spends with (written by the solve)
     float planned;        ///< the total the solve aimed at: B (histogram pixels + zero_pixels)
-    uint default_pixels;  ///< pixels that will have no variance yet (they take B)
+    uint default_pixels;  ///< pixels without a variance yet (they take B, outside the solve; diagnostic)
     uint zero_pixels;     ///< pixels that take no samples (sub-pixel kernels): their share goes to the others
     uint bin_count[EMCV_BUDGET_BINS];     ///< pixels per bin
     uint bin_fraction[EMCV_BUDGET_BINS];  ///< sum of the 10 mantissa bits under the bin's 3
@@ -58,22 +59,27 @@ uint emcv_float_bits(float x) { return floatBitsToUint(x); }
 float emcv_bits_float(uint x) { return uintBitsToFloat(x); }
 #endif
 
-/// The histogram bin of sigma >= 0: 8 (octave - low octave) + the top 3 mantissa bits, clamped to the range.
+/// sigma's octave counted from 2^-24: negative under the range (0 and NaN included), read off the float's
+/// exponent bits.
+EMCV_FN int emcv_budget_octave(float sigma) {
+    if (!(sigma >= 1.0f / 16777216.0f)) return -1;
+    return int(emcv_float_bits(sigma) >> 23u) - 127 - EMCV_BUDGET_SIGMA_LOW_EXPONENT;
+}
+
+/// The histogram bin of sigma >= 0: 8 octave + the top 3 mantissa bits, clamped to the range.
 EMCV_FN uint emcv_budget_bin(float sigma) {
-    if (!(sigma >= 1.0f / 16777216.0f)) return 0u;  // under 2^-24, 0, NaN
-    uint bits = emcv_float_bits(sigma);
-    int octave = int(bits >> 23u) - 127 - EMCV_BUDGET_SIGMA_LOW_EXPONENT;
+    int octave = emcv_budget_octave(sigma);
+    if (octave < 0) return 0u;
     if (octave >= EMCV_BUDGET_BINS / 8) return uint(EMCV_BUDGET_BINS - 1);
-    return uint(octave) * 8u + ((bits >> 20u) & 7u);
+    return uint(octave) * 8u + ((emcv_float_bits(sigma) >> 20u) & 7u);
 }
 
 /// The 10 mantissa bits under the bin's 3 (0 under the range, 1023 above it): where sigma lies in its bin.
 EMCV_FN uint emcv_budget_fraction(float sigma) {
-    if (!(sigma >= 1.0f / 16777216.0f)) return 0u;
-    uint bits = emcv_float_bits(sigma);
-    int octave = int(bits >> 23u) - 127 - EMCV_BUDGET_SIGMA_LOW_EXPONENT;
+    int octave = emcv_budget_octave(sigma);
+    if (octave < 0) return 0u;
     if (octave >= EMCV_BUDGET_BINS / 8) return 1023u;
-    return (bits >> 10u) & 1023u;
+    return (emcv_float_bits(sigma) >> 10u) & 1023u;
 }
 
 /// The sum of sigma over a bin from its count and fraction sum: each pixel at its bin's lower edge plus its

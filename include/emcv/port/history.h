@@ -4,7 +4,7 @@
 // estimates and the sample count that variance asks for.
 //
 // ABOUT      docs/renderer.md documents each layout, the derivations and the choices:
-//              spvg, cv-notex  one RGBA16F texel: (mean, per-sample comoment / EMCV_HISTORY_VARIANCE_UNIT,
+//              spvg, cv-notex  one RGBA16F texel: (mean, per-sample comoment / emcv_history_variance_unit(),
 //                              count, 0) of the tracked scalar (spvg: gamma-space luminance f; cv-notex: the
 //                              residual f - G, alpha = 1). The variance is stored in a fixed unit so that it
 //                              stays far above binary16's smallest normal (6.1e-5) whatever the target.
@@ -70,9 +70,10 @@ EMCV_PORT_BEGIN
 #define EMCV_HISTORY_ETA_MOVING 0.2f
 #endif
 /// The EMCM weight of cv: SPVG's 0.2 rather than the paper's 0.05. With the per-sample variance pooled over
-/// 3x3 pixels (emcv_history_pool_sigma2), 1 / eta = 5 frames of 9 pixels estimate sigma to about 16% (residual
-/// kurtosis 9), which costs an allocation proportional to sigma about 0.1 dB, while a memory of 20 frames keeps
-/// a light change's old noise pattern for 20 frames (docs/renderer.md, "The memory"). Range: (0, 0.5].
+/// 3x3 pixels (emcv_history_pool_sigma2), 1 / eta = 5 frames of 9 pixels estimate sigma to about 16% (for the
+/// residual's kurtosis near 9), which costs an allocation proportional to sigma about 0.1 dB, while a memory
+/// of 20 frames keeps a light change's old noise pattern for 20 frames (docs/renderer.md, "The memory").
+/// Range: (0, 0.5].
 #ifndef EMCV_HISTORY_ETA_EMCM
 #define EMCV_HISTORY_ETA_EMCM 0.2f
 #endif
