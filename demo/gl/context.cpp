@@ -23,6 +23,14 @@
 // OSMesaCreateContextAttribs): suppress reports whose stack goes through Mesa's libraries only, for every
 // program linking emcv_gl (tests, emcv-glinfo, the demo). LSan stays on for emcv's code; harmless without
 // sanitizers. Defined here because this file is linked into every such program.
+// AddressSanitizer: GCC 12's runtime (Debian 12) guesses from a dynamic TLS block's address alone whether it has a
+// pre-2.25 glibc header, and when a block lands on that offset by chance it records a bogus range that
+// LeakSanitizer's tracer then scans: "Tracer caught signal 11" in ScanRangeForPointers at exit, about once in
+// a few hundred GL runs (Mesa and LLVM are dlopen'd with dynamic TLS). Not intercepting __tls_get_addr avoids
+// it; LSan still scans static TLS and every thread's stack. ASAN_OPTIONS from the environment are applied after
+// these. Harmless without sanitizers.
+extern "C" const char* __asan_default_options() { return "intercept_tls_get_addr=0"; }
+
 extern "C" const char* __lsan_default_suppressions() {
     return "leak:libEGL_mesa\nleak:libgallium\nleak:libglapi\nleak:swrast_dri\nleak:libLLVM\nleak:libGLX_mesa\n"
            "leak:libOSMesa\nleak:libglfw\nleak:libX11\n";
