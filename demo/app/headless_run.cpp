@@ -81,8 +81,26 @@ std::vector<method> methods_to_render(const std::vector<method>& requested) {
     return out;
 }
 
-run_result run_headless(const scene& s, const options& o, int frames) {
-    const render_options ro = make_render_options(o, timing::per_frame);
+namespace {
+
+/// Fills the rows' times from the frames the renderer has measured (rows are frame-major, method `i` of
+/// `count` at frame * count + i). Under GPU timestamps they arrive frames late; `wait` takes the rest.
+void fill_times(std::vector<metrics_row>& rows, std::size_t i, std::size_t count, renderer& r, bool wait) {
+    for (const frame_times& t : r.take_times(wait)) {
+        const std::size_t at = static_cast<std::size_t>(t.frame) * count + i;
+        if (at >= rows.size()) throw std::logic_error("headless run: times of a frame not rendered");
+        metrics_row& row = rows[at];
+        row.sss_ms = t.sss_ms;
+        row.frame_ms = t.frame_ms;
+        row.passes.clear();
+        for (const pass_time& p : t.passes) row.passes.emplace_back(p.name, p.ms);
+    }
+}
+
+}  // namespace
+
+run_result run_headless(const scene& s, const options& o, int frames, timing clock) {
+    const render_options ro = make_render_options(o, clock);
 
     run_result result;
     std::vector<method_run> runs;
@@ -121,8 +139,6 @@ run_result run_headless(const scene& s, const options& o, int frames) {
             metrics_row& row = frame_rows[i];
             row.frame = frame;
             row.method = run.m.name();
-            row.sss_ms = stats.sss_ms;
-            row.frame_ms = stats.frame_ms;
             row.mean_spp = stats.mean_spp;
             row.max_spp = stats.max_spp;
             row.psnr_db = psnr_db(view_of(display), view_of(ref_display));
@@ -158,12 +174,14 @@ run_result run_headless(const scene& s, const options& o, int frames) {
         // The reference's previous image is replaced last: the others compared against the old one above.
         ref.previous_display = std::move(ref_display);
         for (metrics_row& row : frame_rows) result.rows.push_back(std::move(row));
+        for (std::size_t i = 0; i < runs.size(); ++i) fill_times(result.rows, i, runs.size(), runs[i].r, false);
         progress.update(frame + 1);
     }
+    for (std::size_t i = 0; i < runs.size(); ++i) fill_times(result.rows, i, runs.size(), runs[i].r, true);
 
     if (o.out) {
         write_file_atomically(*o.out / "metrics.csv", metrics_csv(result.rows));
-        write_file_atomically(*o.out / "metrics.json", metrics_json(result.rows, sampling_mode_of(o.defines).text()));
+        write_file_atomically(*o.out / "metrics.json", metrics_json(result.rows, sampling_mode_of(o.defines).text(), timing_name(clock)));
     }
     return result;
 }

@@ -20,9 +20,10 @@ struct run_result {
 /// relative MSE and temporal error are all measured against it).
 std::vector<method> methods_to_render(const std::vector<method>& requested);
 
-/// Renders `frames` frames of each method (needs a current GL context). With o.out, writes
-/// DIR/<method>/frame-NNNN.png (and .exr with o.exr), DIR/metrics.csv and DIR/metrics.json, each through a
-/// temporary name. Throws output_error when a file cannot be written, std::runtime_error from the renderer.
-run_result run_headless(const scene& s, const options& o, int frames);
+/// Renders `frames` frames of each method (needs a current GL context), timing passes on `clock`. With o.out,
+/// writes DIR/<method>/frame-NNNN.png (and .exr with o.exr), DIR/metrics.csv and DIR/metrics.json, each
+/// through a temporary name. Throws output_error when a file cannot be written, std::runtime_error from the
+/// renderer.
+run_result run_headless(const scene& s, const options& o, int frames, timing clock);
 
 }  // namespace emcv::demo::app

@@ -89,7 +89,8 @@ int main(int argc, char** argv) {
             const int shown = run_window(context, s, o, o.frames);
             std::cout << "window: " << shown << " frames of " << s.name << " on " << context.renderer() << '\n';
         } else {
-            const run_result result = run_headless(s, o, frames);
+            const timing clock = resolve_timing(o.timing, context.renderer());
+            const run_result result = run_headless(s, o, frames, clock);
             std::vector<std::string> notes;
             const sampling_mode mode = sampling_mode_of(o.defines);
             const std::string cv = method{method::kind::cv}.name(), spvg = method{method::kind::spvg}.name();
@@ -109,9 +110,10 @@ int main(int argc, char** argv) {
             std::cout << "scene " << s.name << ", " << o.width << "x" << o.height << ", " << frames
                       << " frames, seed " << o.seed << ", adaptive sampling: " << mode.text() << ", "
                       << context.renderer() << '\n'
-                      << "times: GPU ms per frame (mean, p95) from frame 1 on (frame 0 is warm-up); spp: samples per SSS "
-                         "pixel; PSNR: dB of the "
-                         "display image against the reference's, mean over frames\n"
+                      << "times: ms per frame (mean, p95) from frame 1 on (frame 0 is warm-up), clock: "
+                      << timing_description(clock, context.renderer())
+                      << "; spp: samples per SSS pixel; PSNR: dB of the display image against the reference's, mean "
+                         "over frames\n"
                       << format_summary(summarize(result.rows, result.method_names), notes);
             if (o.out)
                 std::cout << "wrote " << o.out->string()

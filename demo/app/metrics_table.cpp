@@ -49,9 +49,10 @@ std::string metrics_csv(const std::vector<metrics_row>& rows) {
     return out.str();
 }
 
-std::string metrics_json(const std::vector<metrics_row>& rows, const std::string& sampling) {
+std::string metrics_json(const std::vector<metrics_row>& rows, const std::string& sampling, const std::string& timing) {
     nlohmann::json j;
     if (!sampling.empty()) j["sampling"] = sampling;
+    if (!timing.empty()) j["timing"] = timing;
     j["columns"] = metrics_columns;
     j["rows"] = nlohmann::json::array();
     for (const metrics_row& r : rows) {
@@ -65,6 +66,9 @@ std::string metrics_json(const std::vector<metrics_row>& rows, const std::string
                              {"psnr_sss_db", json_number(r.psnr_sss_db)},
                              {"rel_mse", json_number(r.rel_mse)},
                              {"temporal_error", json_number(r.temporal_error)}});
+        nlohmann::json passes = nlohmann::json::array();
+        for (const auto& [name, ms] : r.passes) passes.push_back({{"name", name}, {"ms", json_number(ms)}});
+        j["rows"].back()["passes"] = std::move(passes);
     }
     return j.dump(1) + "\n";
 }

@@ -8,6 +8,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace emcv::demo::app {
@@ -23,6 +24,9 @@ struct metrics_row {
     std::optional<double> psnr_sss_db;     ///< empty when no SSS pixel is visible
     double rel_mse = 0.0;
     std::optional<double> temporal_error;  ///< empty on the first frame (no previous frame)
+    /// Each recorded pass's name and time in ms, in recording order (metrics.json only; sss_ms and frame_ms
+    /// are sums of these).
+    std::vector<std::pair<std::string, double>> passes;
 };
 
 inline constexpr std::array<const char*, 10> metrics_columns = {
@@ -38,10 +42,12 @@ public:
 /// CSV text: the header line, then one line per row. An undefined value is an empty field; +inf is "inf".
 std::string metrics_csv(const std::vector<metrics_row>& rows);
 
-/// JSON text: {"columns": [...], "rows": [{column: value, ...}, ...]}, and "sampling" (the adaptive methods'
-/// mode, e.g. "budget 8 spp" or "target variance 0.0001") when given. JSON has no infinity: +inf and undefined
-/// values are null (the reference's PSNR against itself; see docs/demo.md).
-std::string metrics_json(const std::vector<metrics_row>& rows, const std::string& sampling = {});
+/// JSON text: {"columns": [...], "rows": [{column: value, ..., "passes": [{"name", "ms"}, ...]}, ...]},
+/// "sampling" (the adaptive methods' mode, e.g. "budget 8 spp" or "target variance 0.0001") and "timing" (the
+/// clock of the times: "gpu" or "wall") when given. JSON has no infinity: +inf and undefined values are null
+/// (the reference's PSNR against itself; see docs/demo.md).
+std::string metrics_json(const std::vector<metrics_row>& rows, const std::string& sampling = {},
+                         const std::string& timing = {});
 
 /// Writes `text` to `path` through a temporary sibling and a rename. Throws output_error.
 void write_file_atomically(const std::filesystem::path& path, const std::string& text);

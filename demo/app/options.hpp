@@ -32,6 +32,7 @@ struct options {
     bool no_frames = false;                    ///< --no-frames: with --out, write the metrics only (benchmarks)
     bool window = false;                       ///< --window: interactive GLFW window
     bool approximate_cdf = false;              ///< --approximate-cdf: SPVG's inverse-CDF fit for burley-N
+    timing_request timing = timing_request::automatic;  ///< --timing auto|wall|gpu: the clock of pass times
     /// --define NAME=VALUE (repeatable): port tunables, validated (render/tunables.hpp), later ones win.
     std::vector<std::pair<std::string, std::string>> defines;
     bool list_methods = false;                 ///< --list-methods: the method table, one name per line

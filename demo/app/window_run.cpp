@@ -106,7 +106,7 @@ void blit_to_window(const blit_source& source, int width, int height) {
 std::string title(const scene& s, const renderer& r, int frame, const frame_stats& stats, bool heatmap) {
     char text[256];
     std::snprintf(text, sizeof text, "emcv-demo  %s  %s  frame %d  sss %.2f ms  frame %.2f ms  spp %.1f%s",
-                  s.name.c_str(), r.current_method().name().c_str(), frame, stats.sss_ms, stats.frame_ms,
+                  s.name.c_str(), r.current_method().name().c_str(), frame, stats.times.sss_ms, stats.times.frame_ms,
                   stats.mean_spp, heatmap ? "  [heatmap]" : "");
     return text;
 }
@@ -121,7 +121,7 @@ int run_window(gl::context& ctx, const scene& s, const options& o, std::optional
     glfwSetWindowUserPointer(window, &state);
     glfwSetKeyCallback(window, on_key);
 
-    const render_options ro = make_render_options(o, timing::asynchronous);  // never stall on timer queries
+    const render_options ro = make_render_options(o, o.timing == timing_request::wall ? timing::wall : timing::gpu);  // gpu never stalls: the title shows the newest measured frame
     std::size_t method_index = 0;
     renderer r(s, o.methods[method_index], ro);
     const blit_source display = make_blit_source(r.display_texture(), o.width, o.height);

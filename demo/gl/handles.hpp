@@ -54,8 +54,8 @@ struct vertex_array_traits {
     static GLuint create() { GLuint id = 0; glCreateVertexArrays(1, &id); return id; }
     static void destroy(GLuint id) { glDeleteVertexArrays(1, &id); }
 };
-struct query_time_elapsed_traits {
-    static GLuint create() { GLuint id = 0; glCreateQueries(GL_TIME_ELAPSED, 1, &id); return id; }
+struct query_timestamp_traits {
+    static GLuint create() { GLuint id = 0; glCreateQueries(GL_TIMESTAMP, 1, &id); return id; }
     static void destroy(GLuint id) { glDeleteQueries(1, &id); }
 };
 struct program_traits {
@@ -70,7 +70,7 @@ using buffer = handle<buffer_traits>;
 using texture_2d = handle<texture_2d_traits>;
 using framebuffer = handle<framebuffer_traits>;
 using vertex_array = handle<vertex_array_traits>;
-using query = handle<query_time_elapsed_traits>;
+using timestamp_query = handle<query_timestamp_traits>;
 using program_handle = handle<program_traits>;
 using shader_handle = handle<shader_traits>;
 

@@ -8,16 +8,11 @@
 #include <utility>
 #include <vector>
 
+#include "timing.hpp"
+
 namespace emcv::demo {
 
 enum class tonemap_operator { aces, reinhard };
-
-/// timing::per_frame (headless evaluation) brackets each pass with glFinish and times it on the steady clock,
-/// so frame_stats holds this frame's times (on llvmpipe, whose GL_TIME_ELAPSED queries miss compute
-/// dispatches, the only correct measure). timing::asynchronous (interactive window) keeps a GPU timer ring per
-/// pass (demo/gl/timer.hpp) and never waits: frame_stats holds the newest finished measurement of each pass
-/// (a few frames old), or 0 before the first one is ready.
-enum class timing { per_frame, asynchronous };
 
 struct render_options {
     int width = 128;
@@ -28,7 +23,7 @@ struct render_options {
     bool approximate_inverse_cdf = false;
     tonemap_operator tonemap = tonemap_operator::aces;
     float exposure = 1.0f;  ///< linear radiance is multiplied by this before the tonemap
-    timing timing_mode = timing::per_frame;
+    timing timing_mode = timing::wall;  ///< the clock of frame_stats' pass times (timing.hpp)
     /// Tunables of the port headers (`--define NAME=VALUE`, validated by demo/render/tunables.hpp), passed
     /// to every shader as `#define NAME VALUE`.
     std::vector<std::pair<std::string, std::string>> defines;

@@ -5,15 +5,15 @@
 #include "renderer.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
+#include <deque>
 #include <optional>
 #include <stdexcept>
 
 #include "adaptive/history.hpp"
 #include "tunables.hpp"
 #include "frame_constants.hpp"
-#include "gl/timer.hpp"
+#include "gl/timestamps.hpp"
 #include "passes/passes.hpp"
 #include "render/bindings.h"
 #include "resources.hpp"
@@ -36,13 +36,12 @@ render_options validated(render_options o) {
     return o;
 }
 
-/// One timed pass slot: every pass id, and one per shadow layer.
-struct timed_slot {
-    std::string name;
-    gl::gpu_timer timer;
-    double last_ms = 0.0;
-    std::chrono::steady_clock::time_point started{};
-};
+/// Measured frames kept for take_times at most: a caller that never takes them (the window) holds no more.
+constexpr std::size_t max_unclaimed_frames = 1024;
+
+std::unique_ptr<gl::timestamp_source> make_timestamps(timing t) {
+    return t == timing::gpu ? gl::make_gpu_timestamps() : gl::make_wall_timestamps();
+}
 
 }  // namespace
 
@@ -57,7 +56,9 @@ struct renderer::impl {
     frame_planner planner;
     frame_constants constants;
     std::vector<float> light_scale;
-    std::vector<timed_slot> slots;  // pass_id_count fixed slots, then one per shadow layer
+    std::vector<std::string> slot_names;  // timing tags: pass_id_count fixed slots, then one per shadow layer
+    gl::pass_timestamps stamps;
+    std::deque<frame_times> unclaimed;  // measured frames not yet taken (take_times)
     frame_stats stats;
     frame_stats held_reference;  // the reference's statistics, shown again while it reuses its result
     bool counts_dirty = true;
@@ -65,13 +66,12 @@ struct renderer::impl {
     impl(const scene& sc, method me, render_options op)
         : s(sc), m(me), o(validated(std::move(op))), shaders(make_shader_setup(o)), programs(make_pass_programs(shaders)),
           res(make_gpu_resources(s, m, o.width, o.height)), planner(s, m, o.width, o.height, sampling_mode_of(o.defines).budget), constants(s),
-          light_scale(s.lights.size(), 1.0f) {
+          light_scale(s.lights.size(), 1.0f), stamps(make_timestamps(o.timing_mode)) {
         make_history();
         for (std::size_t id = 0; id < pass_id_count; ++id)
-            slots.push_back({std::string(pass_base_name(static_cast<pass_id>(id))), gl::gpu_timer(), 0.0, {}});
+            slot_names.emplace_back(pass_base_name(static_cast<pass_id>(id)));
         for (std::size_t layer = 0; layer < res.shadow_lights.size(); ++layer)
-            slots.push_back({pass_name(s, {pass_id::shadow, res.shadow_lights[layer], layer}), gl::gpu_timer(), 0.0, {}});
-        stats.passes.reserve(slots.size());  // a frame records at most one pass per slot: no allocation later
+            slot_names.push_back(pass_name(s, {pass_id::shadow, res.shadow_lights[layer], layer}));
     }
 
     void make_history() {
@@ -82,29 +82,6 @@ struct renderer::impl {
 
     std::size_t slot_of(const planned_pass& p) const {
         return p.id == pass_id::shadow ? pass_id_count + p.layer : static_cast<std::size_t>(p.id);
-    }
-
-    // timing::per_frame brackets each pass with glFinish and the steady clock: the pass's own execution time
-    // on any device. On llvmpipe it is the only correct one: there, GL_TIME_ELAPSED queries do not cover
-    // compute dispatches (measured: 0.00 ms for every compute pass) and the frame's first query reads ~1e6 ms.
-    void begin_pass(timed_slot& t) {
-        glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, t.name.c_str());
-        if (o.timing_mode == timing::per_frame) {
-            glFinish();
-            t.started = std::chrono::steady_clock::now();
-        } else {
-            t.timer.begin();
-        }
-    }
-
-    void end_pass(timed_slot& t) {
-        if (o.timing_mode == timing::per_frame) {
-            glFinish();
-            t.last_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t.started).count();
-        } else {
-            t.timer.end();
-        }
-        glPopDebugGroup();
     }
 
     /// Samples per SSS pixel from the GPU's reduction (16 bytes read back), or the held reference's.
@@ -138,22 +115,29 @@ struct renderer::impl {
         }
     }
 
-    /// Times of the recorded passes, in recording order (within the capacity reserved in the constructor).
-    void collect_times(const std::vector<planned_pass>& plan) {
-        if (o.timing_mode == timing::asynchronous) {
-            for (timed_slot& t : slots)
-                while (const std::optional<double> ms = t.timer.pop_ms()) t.last_ms = *ms;
+    /// Names and sums the frames whose stamps have arrived; the newest becomes stats.times.
+    void absorb(std::vector<gl::timed_frame> measured) {
+        for (gl::timed_frame& t : measured) {
+            frame_times f;
+            f.frame = t.frame;
+            f.passes.resize(t.tags.size());
+            for (std::size_t i = 0; i < t.tags.size(); ++i) {
+                f.passes[i] = {slot_names.at(t.tags[i]), t.ms[i]};
+                f.frame_ms += t.ms[i];
+                // tags below pass_id_count are pass ids; the shadow layers' slots follow them
+                if (t.tags[i] < pass_id_count && is_sss_pass(static_cast<pass_id>(t.tags[i]))) f.sss_ms += t.ms[i];
+            }
+            stats.times = f;
+            unclaimed.push_back(std::move(f));
+            if (unclaimed.size() > max_unclaimed_frames) unclaimed.pop_front();
         }
-        stats.passes.resize(plan.size());
-        stats.sss_ms = 0.0;
-        stats.frame_ms = 0.0;
-        for (std::size_t i = 0; i < plan.size(); ++i) {
-            const timed_slot& t = slots[slot_of(plan[i])];
-            stats.passes[i].name = t.name;
-            stats.passes[i].ms = t.last_ms;
-            stats.frame_ms += t.last_ms;
-            if (is_sss_pass(plan[i].id)) stats.sss_ms += t.last_ms;
-        }
+    }
+
+    std::vector<frame_times> take_times(bool wait) {
+        absorb(stamps.collect(wait));
+        std::vector<frame_times> out(std::make_move_iterator(unclaimed.begin()), std::make_move_iterator(unclaimed.end()));
+        unclaimed.clear();
+        return out;
     }
 
     const frame_stats& render(int frame) {
@@ -164,12 +148,17 @@ struct renderer::impl {
         const frame_context context{res, programs, s, m, history ? &*history : nullptr, frame,
                                     div_up(o.width, EMCV_RENDER_TILE_SIZE), div_up(o.height, EMCV_RENDER_TILE_SIZE)};
         passes::bind_frame_resources(context);
+        // A stamp at every pass boundary (gl/timestamps.hpp): the wall clock finishes the GPU's work there, GPU
+        // timestamps never wait.
+        stamps.begin_frame(frame);
         for (const planned_pass& p : plan) {
-            timed_slot& t = slots[slot_of(p)];
-            begin_pass(t);
+            const std::size_t slot = slot_of(p);
+            glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, slot_names[slot].c_str());
             passes::record(p, context);
-            end_pass(t);
+            glPopDebugGroup();
+            stamps.end_pass(slot);
         }
+        stamps.end_frame();
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
         glBindVertexArray(0);
 
@@ -185,7 +174,7 @@ struct renderer::impl {
         stats.frame = frame;
         stats.reference_reused = planner.reuses_result();
         collect_sample_stats(visible);
-        collect_times(plan);
+        absorb(stamps.collect(false));
         return stats;
     }
 };
@@ -197,6 +186,10 @@ renderer::renderer(renderer&&) noexcept = default;
 renderer& renderer::operator=(renderer&&) noexcept = default;
 
 const frame_stats& renderer::render(int frame) { return p_->render(frame); }
+
+std::vector<frame_times> renderer::take_times(bool wait) { return p_->take_times(wait); }
+
+timing renderer::clock() const { return p_->o.timing_mode; }
 
 void renderer::set_method(const method& m) {
     p_->m = m;

@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <vector>
 
 #include "frame_stats.hpp"
 #include "gl/gl.hpp"
@@ -24,7 +25,8 @@ class history;  // demo/render/adaptive/history.hpp
 }
 
 /// The SSS renderer. Needs a current OpenGL 4.5 core context for its whole lifetime (demo/gl/context.hpp).
-/// All GPU resources are created in the constructor; render() allocates nothing.
+/// All GPU resources are created in the constructor, except timestamp queries, whose ring grows while the
+/// GPU is more frames behind than ever before (gl/timestamps.hpp).
 class renderer {
 public:
     /// Uploads the scene's meshes and textures and builds the programs. Throws std::runtime_error (or
@@ -38,8 +40,16 @@ public:
 
     /// Records and runs exactly the passes frame_planner::plan lists for this frame. Frames are rendered in
     /// increasing order (motion vectors and reference reuse compare with the previous call).
-    /// Returns this frame's statistics (a reference to the renderer's own, reused every frame: no allocation).
+    /// Returns this frame's statistics (a reference to the renderer's own, reused every frame), with the
+    /// newest measured frame's pass times.
     const frame_stats& render(int frame);
+    /// Every measured frame's pass times not taken before, oldest first, each frame once: under the wall clock
+    /// a frame is measured when render returns; under GPU timestamps once the GPU has written its stamps.
+    /// `wait`: also wait for every rendered frame's (end of a run). The newest 1024 are kept for a caller that
+    /// takes them late.
+    std::vector<frame_times> take_times(bool wait);
+    /// The clock of the pass times (render_options::timing_mode).
+    timing clock() const;
 
     /// Switches the method (window keys); histories and the held reference are reset.
     void set_method(const method& m);

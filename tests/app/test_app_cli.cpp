@@ -294,11 +294,44 @@ TEST_CASE("a small headless run writes frames and complete metrics files", "[app
 
     const nlohmann::json j = nlohmann::json::parse(emcv_test::read_file(out / "metrics.json"));
     REQUIRE(j["rows"].size() == rows);
+    CHECK(j["timing"] == "wall");  // auto on llvmpipe
+    CHECK(r.out.find("clock: wall clock, glFinish at every pass boundary") != std::string::npos);
     for (const auto& row : j["rows"]) {
-        CHECK(row.size() == 10);
+        CHECK(row.size() == 11);  // the columns and the passes
         if (row["method"] == "reference") CHECK(row["psnr_db"].is_null());
         else CHECK(row["psnr_db"].is_number());
+        double sum = 0.0;  // frame_ms is the sum of the passes, added in recording order
+        for (const auto& p : row["passes"]) sum += p["ms"].get<double>();
+        CHECK(sum == row["frame_ms"].get<double>());
+        CHECK(row["passes"].front()["name"] == "gbuffer");
     }
+}
+
+TEST_CASE("emcv-demo --timing gpu: each frame's times arrive late and land on their own rows", "[app][cli][gl]") {
+    const fs::path out = scratch_dir("timing-gpu") / "out";
+    const emcv_test::command_result r = run_demo("--scene '" + data_dir + "/tiny.json' --size 32x32 --frames 5 "
+                                                 "--method burley-4 --timing gpu --no-frames --out '" + out.string() + "'");
+    if (emcv_test::no_display(r)) SKIP("no OpenGL display: " << r.err);
+    INFO(r.err << r.out);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.out.find("clock: GPU timestamps at every pass boundary") != std::string::npos);
+    const nlohmann::json j = nlohmann::json::parse(emcv_test::read_file(out / "metrics.json"));
+    CHECK(j["timing"] == "gpu");
+    REQUIRE(j["rows"].size() == 10);  // burley-4 and the reference, 5 frames
+    for (const auto& row : j["rows"]) {
+        INFO(row.dump());
+        REQUIRE(row["passes"].size() >= 3);  // every frame's passes were measured, none dropped
+        double sum = 0.0, sss = 0.0;
+        for (const auto& p : row["passes"]) {
+            sum += p["ms"].get<double>();
+            if (p["name"].get<std::string>().rfind("sss-", 0) == 0) sss += p["ms"].get<double>();
+        }
+        CHECK(sum == row["frame_ms"].get<double>());
+        CHECK(sss == row["sss_ms"].get<double>());
+    }
+    const emcv_test::command_result bad = run_demo("--method burley-4 --timing=fast");
+    CHECK(bad.exit_code == 2);
+    CHECK(bad.err == "emcv-demo: --timing: expected auto, wall or gpu, got 'fast'\n");
 }
 
 TEST_CASE("the metrics-only flag (--no-frames) writes metrics.csv and metrics.json and no frame", "[app][cli][gl]") {

@@ -27,7 +27,7 @@ namespace {
 const std::string data_dir = EMCV_APP_TEST_DATA;
 
 struct row {
-    std::string method, lights, sampling;
+    std::string method, lights, sampling, timing;
     int frame = 0, max_spp = 0;
     double sss_ms = 0.0, frame_ms = 0.0, mean_spp = 0.0;
     std::size_t sss_pixels = 0;
@@ -42,12 +42,12 @@ std::vector<row> run_eval(const std::string& args) {
     std::istringstream in(r.out);
     std::string line;
     REQUIRE(std::getline(in, line));
-    REQUIRE(line == "scene,width,height,sss_scale,method,frame,sss_ms,frame_ms,mean_spp,max_spp,sss_pixels,lights,sampling");
+    REQUIRE(line == "scene,width,height,sss_scale,method,frame,sss_ms,frame_ms,mean_spp,max_spp,sss_pixels,lights,sampling,timing");
     std::vector<row> rows;
     while (std::getline(in, line)) {
         const std::vector<std::string> f = emcv_test::split_fields(line, ',');
         INFO(line);
-        REQUIRE(f.size() == 13);
+        REQUIRE(f.size() == 14);
         row x;
         x.method = f[4];
         x.frame = std::stoi(f[5]);
@@ -58,6 +58,7 @@ std::vector<row> run_eval(const std::string& args) {
         x.sss_pixels = static_cast<std::size_t>(std::stoull(f[10]));
         x.lights = f[11];
         x.sampling = f[12];
+        x.timing = f[13];
         rows.push_back(x);
     }
     return rows;
@@ -85,6 +86,7 @@ TEST_CASE("emcv-eval: rows are frame-major, fixed counts are exact, and the ligh
         CHECK(x.frame == int(i / methods.size()));      // every method of a frame before the next frame
         CHECK(x.method == methods[i % methods.size()]);
         CHECK(x.frame_ms > 0.0);
+        CHECK(x.timing == "wall");  // auto on llvmpipe: its timer queries miss compute dispatches
         // The key light steps 3 -> 0 at frame 3 (switch.json); the fill light stays at 1.
         CHECK(x.lights == (x.frame < 3 ? "key=3.000000;fill=1.000000" : "key=0.000000;fill=1.000000"));
         if (x.method == "diffuse") {
@@ -101,6 +103,27 @@ TEST_CASE("emcv-eval: rows are frame-major, fixed counts are exact, and the ligh
         }
         if ((x.method == "spvg" || x.method == "cv") && x.frame < 2) CHECK(x.mean_spp == 64.0);  // no history yet
     }
+}
+
+TEST_CASE("emcv-eval --timing gpu: every frame's row once, frame-major, once its stamps arrived", "[app][eval][gl]") {
+    const std::vector<std::string> methods = {"burley-4", "cv"};
+    const std::vector<row> rows = run_eval("--scene '" + data_dir + "/switch.json' --size 48x48 --method burley-4,cv "
+                                           "--seed 3 --timing gpu");
+    REQUIRE(rows.size() == 6 * methods.size());
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const row& x = rows[i];
+        INFO("row " << i << ": " << x.method << " frame " << x.frame);
+        CHECK(x.frame == int(i / methods.size()));
+        CHECK(x.method == methods[i % methods.size()]);
+        CHECK(x.timing == "gpu");
+        CHECK(x.frame_ms >= x.sss_ms);
+        CHECK(x.sss_ms >= 0.0);
+    }
+    const emcv_test::command_result bad = emcv_test::run_command(
+        "'" + std::string(EMCV_EVAL_EXE) + "' --method burley-4 --timing cpu");
+    CHECK(bad.exit_code == 2);
+    CHECK(bad.err == "emcv-eval: --timing: expected auto, wall or gpu, got 'cpu'\n");
+    CHECK(bad.out.empty());
 }
 
 TEST_CASE("emcv-eval: the adaptive rows' mean and max of N equal the dumped heatmaps'", "[app][eval][gl]") {

@@ -24,10 +24,10 @@ namespace {
 std::vector<app::metrics_row> sample_rows() {
     const double inf = std::numeric_limits<double>::infinity();
     std::vector<app::metrics_row> rows;
-    rows.push_back({0, "burley-16", 1.5, 4.0, 16.0, 16, 30.0, 25.0, 0.02, std::nullopt});
-    rows.push_back({0, "reference", 9.0, 12.0, 1024.0, 1024, inf, inf, 0.0, std::nullopt});
-    rows.push_back({1, "burley-16", 2.5, 5.0, 16.0, 16, 32.0, std::nullopt, 0.01, 0.125});
-    rows.push_back({1, "reference", 9.0, 12.0, 1024.0, 1024, inf, inf, 0.0, 0.0});
+    rows.push_back({0, "burley-16", 1.5, 4.0, 16.0, 16, 30.0, 25.0, 0.02, std::nullopt, {{"gbuffer", 2.5}, {"sss-burley", 1.5}}});
+    rows.push_back({0, "reference", 9.0, 12.0, 1024.0, 1024, inf, inf, 0.0, std::nullopt, {}});
+    rows.push_back({1, "burley-16", 2.5, 5.0, 16.0, 16, 32.0, std::nullopt, 0.01, 0.125, {}});
+    rows.push_back({1, "reference", 9.0, 12.0, 1024.0, 1024, inf, inf, 0.0, 0.0, {}});
     return rows;
 }
 
@@ -50,7 +50,7 @@ TEST_CASE("metrics.json carries every column, inf and undefined as null", "[app]
     const nlohmann::json j = nlohmann::json::parse(app::metrics_json(sample_rows()));
     REQUIRE(j["rows"].size() == 4);
     CHECK(j["columns"].size() == 10);
-    for (const auto& row : j["rows"]) CHECK(row.size() == 10);
+    for (const auto& row : j["rows"]) CHECK(row.size() == 11);  // the columns and the passes
     CHECK(j["rows"][0]["psnr_db"].get<double>() == 30.0);
     CHECK(j["rows"][0]["temporal_error"].is_null());
     CHECK(j["rows"][1]["psnr_db"].is_null());
@@ -58,8 +58,17 @@ TEST_CASE("metrics.json carries every column, inf and undefined as null", "[app]
     CHECK(j["rows"][2]["temporal_error"].get<double>() == 0.125);
     CHECK(j["rows"][3]["method"] == "reference");
     CHECK_FALSE(j.contains("sampling"));
-    const nlohmann::json with_mode = nlohmann::json::parse(app::metrics_json(sample_rows(), "budget 8 spp"));
+    CHECK_FALSE(j.contains("timing"));
+    // each pass by name, in recording order
+    REQUIRE(j["rows"][0]["passes"].size() == 2);
+    CHECK(j["rows"][0]["passes"][0]["name"] == "gbuffer");
+    CHECK(j["rows"][0]["passes"][0]["ms"].get<double>() == 2.5);
+    CHECK(j["rows"][0]["passes"][1]["name"] == "sss-burley");
+    CHECK(j["rows"][0]["passes"][1]["ms"].get<double>() == 1.5);
+    CHECK(j["rows"][1]["passes"].empty());
+    const nlohmann::json with_mode = nlohmann::json::parse(app::metrics_json(sample_rows(), "budget 8 spp", "gpu"));
     CHECK(with_mode["sampling"] == "budget 8 spp");
+    CHECK(with_mode["timing"] == "gpu");
 }
 
 TEST_CASE("values round-trip through the CSV text", "[app][metrics]") {

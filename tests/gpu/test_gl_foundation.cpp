@@ -1,18 +1,23 @@
 // SPDX-License-Identifier: MIT
 // demo/gl foundation pieces that need a context: readback into floats and image output through OpenImageIO
 // (EXR exact, PNG the same values quantised to 8 bits with no colour transfer, no half-written file on
-// error), the GPU timer ring, RAII handles.
+// error), the pass timestamps (a fake source for the ring's bookkeeping, then GL's two clocks), RAII handles.
 #include <catch2/catch_test_macros.hpp>
 #include <catch2/matchers/catch_matchers_string.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
+#include <map>
+#include <memory>
+#include <stdexcept>
 
 #include "gl/debug.hpp"
 #include "gl/handles.hpp"
 #include "gl/image_io.hpp"
 #include "gl/program.hpp"
-#include "gl/timer.hpp"
+#include "gl/timestamps.hpp"
 #include "gl_test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -78,19 +83,126 @@ TEST_CASE("image output errors are clear and leave no file", "[image-files]") {
     CHECK_THROWS_AS(emcv::gl::read_image(dir / "missing.exr"), emcv::gl::image_error);
 }
 
-TEST_CASE("the GPU timer ring returns one measurement per begin/end and never blocks in pop") {
+namespace {
+
+/// A timestamp source whose stamps the test writes: stamp i records the "GPU" clock `now`, and a query is
+/// ready only once the test has let the GPU reach it (`completed`).
+class fake_stamps final : public emcv::gl::timestamp_source {
+public:
+    struct state {
+        std::uint64_t now = 0;
+        std::size_t completed = 0;  // stamps in recording order that the GPU has reached
+        std::size_t grows = 0;
+        std::vector<std::uint64_t> value;  // per query
+        std::vector<std::size_t> order;    // per query: its stamp's position in recording order
+        std::size_t stamped = 0;
+    };
+    explicit fake_stamps(std::shared_ptr<state> s) : s_(std::move(s)) {}
+    std::size_t size() const override { return s_->value.size(); }
+    void grow(std::size_t count) override {
+        ++s_->grows;
+        s_->value.resize(s_->value.size() + count, 0);
+        s_->order.resize(s_->order.size() + count, 0);
+    }
+    void stamp(std::size_t q) override {
+        s_->value.at(q) = s_->now;
+        s_->order.at(q) = s_->stamped++;
+    }
+    bool ready(std::size_t q) override { return s_->order.at(q) < s_->completed; }
+    std::uint64_t nanoseconds(std::size_t q) override {
+        s_->completed = std::max(s_->completed, s_->order.at(q) + 1);  // waiting lets the GPU reach it
+        return s_->value.at(q);
+    }
+
+private:
+    std::shared_ptr<state> s_;
+};
+
+}  // namespace
+
+TEST_CASE("pass timestamps: frames come back in order, each once, with their tags; the ring grows and never drops", "[timestamps]") {
+    auto st = std::make_shared<fake_stamps::state>();
+    emcv::gl::pass_timestamps stamps(std::make_unique<fake_stamps>(st));
+    // 40 frames of 3 passes before the GPU finishes any: 160 stamps in flight, more than the first 16 queries.
+    for (int frame = 0; frame < 40; ++frame) {
+        stamps.begin_frame(frame);
+        for (std::size_t pass = 0; pass < 3; ++pass) {
+            st->now += 1'000'000 * (pass + 1) + static_cast<std::uint64_t>(frame);  // pass p lasts (p + 1) ms + frame ns
+            stamps.end_pass(10 + pass);
+        }
+        st->now += 5'000'000;  // between frames: not inside any pass
+        stamps.end_frame();
+    }
+    CHECK(stamps.pending_frames() == 40);
+    CHECK(stamps.query_count() >= 160);
+    CHECK(st->grows > 1);
+    CHECK(stamps.collect(false).empty());  // nothing reached yet: nothing comes back, nothing waits
+
+    st->completed = 4 * 7 + 2;  // the GPU is inside frame 7: frames 0..6 are complete
+    std::vector<emcv::gl::timed_frame> got = stamps.collect(false);
+    REQUIRE(got.size() == 7);
+    CHECK(stamps.collect(false).empty());  // each frame once
+    const std::vector<emcv::gl::timed_frame> rest = stamps.collect(true);
+    got.insert(got.end(), rest.begin(), rest.end());
+    REQUIRE(got.size() == 40);
+    CHECK(stamps.pending_frames() == 0);
+    for (int frame = 0; frame < 40; ++frame) {
+        const emcv::gl::timed_frame& t = got[static_cast<std::size_t>(frame)];
+        CHECK(t.frame == frame);
+        REQUIRE(t.tags == std::vector<std::size_t>{10, 11, 12});
+        REQUIRE(t.ms.size() == 3);
+        for (std::size_t pass = 0; pass < 3; ++pass)
+            CHECK(t.ms[pass] == static_cast<double>(1'000'000 * (pass + 1) + static_cast<std::uint64_t>(frame)) * 1e-6);
+    }
+
+    // Queries are reused once read: a steady stream needs no more.
+    const std::size_t queries = stamps.query_count();
+    for (int frame = 40; frame < 200; ++frame) {
+        stamps.begin_frame(frame);
+        stamps.end_pass(0);
+        stamps.end_frame();
+        st->completed = st->stamped;
+        CHECK(stamps.collect(false).size() == 1);
+    }
+    CHECK(stamps.query_count() == queries);
+
+    // Misuse is an error, not a corrupt frame.
+    CHECK_THROWS_AS(stamps.end_pass(0), std::logic_error);
+    CHECK_THROWS_AS(stamps.end_frame(), std::logic_error);
+    stamps.begin_frame(200);
+    CHECK_THROWS_AS(stamps.begin_frame(201), std::logic_error);
+    CHECK_THROWS_AS(emcv::gl::pass_timestamps(nullptr), std::invalid_argument);
+}
+
+TEST_CASE("GL timestamps and the wall clock both time every pass of every frame, in order", "[timestamps]") {
     auto ctx = emcv::test::context_or_skip();
     emcv::gl::debug_messenger debug;
-    emcv::gl::gpu_timer timer(2);
-    CHECK_FALSE(timer.pop_ms().has_value());
-    for (int i = 0; i < 3; ++i) {  // the third begin finds the 2-slot ring full and is dropped, not stalled
-        timer.begin();
-        glFinish();
-        timer.end();
+    auto work = emcv::gl::buffer::create();  // each "pass" clears a 1 MiB buffer (no framebuffer needed)
+    glNamedBufferData(work.id(), 1 << 20, nullptr, GL_DYNAMIC_DRAW);
+    const float one = 1.0f;
+    for (const bool gpu : {true, false}) {
+        INFO((gpu ? "GL_TIMESTAMP" : "wall clock"));
+        emcv::gl::pass_timestamps stamps(gpu ? emcv::gl::make_gpu_timestamps() : emcv::gl::make_wall_timestamps());
+        for (int frame = 0; frame < 30; ++frame) {
+            stamps.begin_frame(frame);
+            for (std::size_t pass = 0; pass < 2; ++pass) {
+                glClearNamedBufferData(work.id(), GL_R32F, GL_RED, GL_FLOAT, &one);
+                stamps.end_pass(pass);
+            }
+            stamps.end_frame();
+        }
+        std::vector<emcv::gl::timed_frame> got = stamps.collect(false);
+        if (!gpu) CHECK(got.size() == 30);  // the wall clock finished every pass: all measured at once
+        const std::vector<emcv::gl::timed_frame> rest = stamps.collect(true);
+        got.insert(got.end(), rest.begin(), rest.end());
+        REQUIRE(got.size() == 30);
+        for (int frame = 0; frame < 30; ++frame) {
+            CHECK(got[static_cast<std::size_t>(frame)].frame == frame);
+            REQUIRE(got[static_cast<std::size_t>(frame)].ms.size() == 2);
+            for (double ms : got[static_cast<std::size_t>(frame)].ms) CHECK((ms >= 0.0 && ms < 60'000.0));
+        }
     }
-    const auto times = timer.drain_ms();
-    CHECK(times.size() == 2);
-    for (double t : times) CHECK(t >= 0.0);
+    INFO(debug.last_error());
     CHECK(debug.error_count() == 0);
 }
 

@@ -45,7 +45,7 @@ golden_images render_case(const golden_case& c, std::uint32_t seed) {
     options.width = c.width;
     options.height = c.height;
     options.seed = seed;
-    options.timing_mode = demo::timing::per_frame;
+    options.timing_mode = demo::timing::wall;
     demo::renderer r(s, *m, options);
     for (int frame = 0; frame <= c.last_frame(); ++frame) r.render(frame);
 

@@ -116,18 +116,41 @@ TEST_CASE("the renderer records exactly the pass list", "[image-files]") {
             renderer r(s, m, options);
             const frame_stats& stats = r.render(0);
             std::vector<std::string> recorded;
-            for (const pass_time& p : stats.passes) recorded.emplace_back(p.name);
+            for (const pass_time& p : stats.times.passes) recorded.emplace_back(p.name);
             CHECK(recorded == pass_list(s, m, 0, 32, 24));
             if (!has_pass(recorded, "sss-")) {
-                CHECK(stats.sss_ms == 0.0);
+                CHECK(stats.times.sss_ms == 0.0);
                 CHECK(stats.sss_pixels == 0);
+            }
+            {  // GPU timestamps time the same passes as the wall clock, frames later (take_times waits at the end)
+                render_options gpu = options;
+                gpu.timing_mode = timing::gpu;
+                renderer rg(s, m, gpu), rw(s, m, options);
+                std::vector<std::vector<std::string>> wall_lists;
+                for (int frame = 0; frame < 3; ++frame) {
+                    rg.render(frame);
+                    wall_lists.emplace_back();
+                    for (const pass_time& p : rw.render(frame).times.passes) wall_lists.back().emplace_back(p.name);
+                }
+                const std::vector<frame_times> times = rg.take_times(true);
+                REQUIRE(times.size() == 3);
+                for (int frame = 0; frame < 3; ++frame) {
+                    const frame_times& t = times[static_cast<std::size_t>(frame)];
+                    CHECK(t.frame == frame);
+                    std::vector<std::string> timed;
+                    double sum = 0.0;
+                    for (const pass_time& p : t.passes) timed.emplace_back(p.name), sum += p.ms;
+                    CHECK(timed == wall_lists[static_cast<std::size_t>(frame)]);
+                    CHECK(t.frame_ms == sum);
+                }
+                CHECK(rg.take_times(true).empty());
             }
             if (is_adaptive(m)) {  // budget mode records its solve, and exactly the list printed for it
                 render_options budget = options;
                 add_define(budget.defines, "EMCV_HISTORY_SPP_BUDGET=4");
                 renderer rb(s, m, budget);
                 std::vector<std::string> recorded_budget;
-                for (const pass_time& p : rb.render(0).passes) recorded_budget.emplace_back(p.name);
+                for (const pass_time& p : rb.render(0).times.passes) recorded_budget.emplace_back(p.name);
                 CHECK(recorded_budget == pass_list(s, m, 0, 32, 24, true));
             }
         }
@@ -147,7 +170,7 @@ TEST_CASE("the renderer skips a dark light's shadow pass on the frames it is dar
         INFO("frame " << frame);
         const frame_stats& stats = r.render(frame);
         std::vector<std::string> recorded;
-        for (const pass_time& p : stats.passes) recorded.emplace_back(p.name);
+        for (const pass_time& p : stats.times.passes) recorded.emplace_back(p.name);
         CHECK(recorded == pass_list(light_off, burley16, frame, 32, 24));
         CHECK(has_pass(recorded, "shadow:key") == (frame < 30));
     }

@@ -27,6 +27,7 @@ struct options {
     std::vector<int> heatmap_frames;  ///< --heatmaps F[,F...]: frames whose sample counts (and cv alpha) to dump
     std::filesystem::path heatmap_dir;  ///< --heatmap-dir DIR (required with --heatmaps)
     bool approximate_cdf = false;     ///< --approximate-cdf: SPVG's inverse-CDF fit for the Burley radii
+    demo::timing_request timing = demo::timing_request::automatic;  ///< --timing auto|wall|gpu
     /// --define NAME=VALUE (repeatable): port tunables, validated (render/tunables.hpp), later ones win.
     std::vector<std::pair<std::string, std::string>> defines;
     bool help = false;

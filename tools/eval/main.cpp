@@ -42,6 +42,17 @@ void write_csv(const fs::path& file, const gl::float_image& img) {
     fs::rename(tmp, file);
 }
 
+/// One printed row before its times are known.
+struct eval_row {
+    std::string method;
+    int frame = 0;
+    double sss_ms = 0.0, frame_ms = 0.0, mean_spp = 0.0;
+    int max_spp = 0;
+    std::size_t sss_pixels = 0;
+    std::string lights;
+    bool timed = false;
+};
+
 int run(const eval::options& o) {
     demo::scene s = demo::load_scene_argument(o.scene);
     for (demo::material& m : s.materials)
@@ -51,13 +62,35 @@ int run(const eval::options& o) {
 
     gl::context context;
     gl::debug_messenger messenger;
-    const demo::render_options ro = demo::app::make_render_options(o, demo::timing::per_frame);
+    const demo::timing clock = demo::resolve_timing(o.timing, context.renderer());
+    const demo::render_options ro = demo::app::make_render_options(o, clock);
     std::vector<demo::renderer> renderers;
     for (const demo::method& m : o.methods) renderers.emplace_back(s, m, ro);
 
-    // The adaptive methods' sampling mode, one value per run, repeated on each row so that rows stand alone.
+    // The adaptive methods' sampling mode and the clock, one value per run, repeated on each row so that rows
+    // stand alone.
     const std::string sampling = demo::sampling_mode_of(o.defines).text();
-    std::printf("scene,width,height,sss_scale,method,frame,sss_ms,frame_ms,mean_spp,max_spp,sss_pixels,lights,sampling\n");
+    std::printf("scene,width,height,sss_scale,method,frame,sss_ms,frame_ms,mean_spp,max_spp,sss_pixels,lights,sampling,"
+                "timing\n");
+    // A row waits for its frame's times (under GPU timestamps they arrive frames late); rows are printed
+    // frame-major as soon as every method's row of a frame is complete.
+    std::vector<eval_row> rows;
+    std::size_t printed = 0;
+    const auto take_times = [&](bool wait) {
+        for (std::size_t i = 0; i < renderers.size(); ++i)
+            for (const demo::frame_times& t : renderers[i].take_times(wait)) {
+                eval_row& row = rows.at(static_cast<std::size_t>(t.frame) * renderers.size() + i);
+                row.sss_ms = t.sss_ms;
+                row.frame_ms = t.frame_ms;
+                row.timed = true;
+            }
+        for (; printed < rows.size() && rows[printed].timed; ++printed) {
+            const eval_row& r = rows[printed];
+            std::printf("%s,%d,%d,%g,%s,%d,%.4f,%.4f,%.3f,%d,%zu,%s,%s,%s\n", s.name.c_str(), o.width, o.height,
+                        static_cast<double>(o.sss_scale), r.method.c_str(), r.frame, r.sss_ms, r.frame_ms, r.mean_spp,
+                        r.max_spp, r.sss_pixels, r.lights.c_str(), sampling.c_str(), demo::timing_name(clock));
+        }
+    };
     for (int frame = 0; frame < frames; ++frame) {
         const bool dump = std::find(o.heatmap_frames.begin(), o.heatmap_frames.end(), frame) != o.heatmap_frames.end();
         std::string lights;  // "name=intensity;...": the scene's curves at this frame (scene::curve::at)
@@ -66,9 +99,7 @@ int run(const eval::options& o) {
         for (std::size_t i = 0; i < renderers.size(); ++i) {
             const demo::frame_stats& st = renderers[i].render(frame);
             const std::string name = o.methods[i].name();
-            std::printf("%s,%d,%d,%g,%s,%d,%.4f,%.4f,%.3f,%d,%zu,%s,%s\n", s.name.c_str(), o.width, o.height,
-                        static_cast<double>(o.sss_scale), name.c_str(), frame, st.sss_ms, st.frame_ms, st.mean_spp,
-                        st.max_spp, st.sss_pixels, lights.c_str(), sampling.c_str());
+            rows.push_back({name, frame, 0.0, 0.0, st.mean_spp, st.max_spp, st.sss_pixels, lights, false});
             if (dump) {
                 const std::string stem = name + ".f" + std::to_string(frame);
                 write_csv(o.heatmap_dir / (stem + ".samples.csv"), renderers[i].sample_counts());
@@ -77,7 +108,9 @@ int run(const eval::options& o) {
                 write_csv(o.heatmap_dir / (stem + ".mask.csv"), renderers[i].sss_mask());
             }
         }
+        take_times(false);
     }
+    take_times(true);
     std::fflush(stdout);
     if (messenger.error_count() > 0) {
         std::fprintf(stderr, "emcv-eval: %llu OpenGL errors, the last: %s\n",
