@@ -27,10 +27,11 @@ void frame_constants::upload(const gpu_resources& r, const scene& s, const metho
     if (sss_shown) flags |= EMCV_RENDER_FLAG_SSS_RAN;
     if (o.approximate_inverse_cdf) flags |= EMCV_RENDER_FLAG_APPROXIMATE_CDF;
     frame_.counters = glm::uvec4(static_cast<std::uint32_t>(frame), o.seed, static_cast<std::uint32_t>(s.lights.size()), flags);
-    // The burley pass takes the method's fixed count, or N per pixel from the adaptive-samples pass.
+    // The burley pass takes the method's fixed count; an adaptive method's own burley program (built with its
+    // EMCV_ADAPTIVE_* define, adaptive::history) takes N per pixel from the adaptive-samples pass instead.
     const method_row& row = row_of(m);
     const int fixed = row.passes == sss_passes::burley ? m.samples : 0;
-    frame_.sss = glm::ivec4(fixed, is_adaptive(m) ? 1 : 0, static_cast<int>(s.materials.size()), 0);
+    frame_.sss = glm::ivec4(fixed, 0, static_cast<int>(s.materials.size()), 0);
     glNamedBufferSubData(r.frame_ubo.id(), 0, sizeof frame_, &frame_);
 
     for (std::size_t i = 0; i < s.lights.size(); ++i) {

@@ -30,7 +30,7 @@ enum class sss_passes {
     none,       ///< no SSS pass: the composite shows the unscattered diffuse
     burley,     ///< sss-burley with a fixed count per pixel
     separable,  ///< sss-separable-h, sss-separable-v
-    adaptive,   ///< sss-adaptive-samples, sss-burley with N per pixel, sss-adaptive-update
+    adaptive,   ///< sss-adaptive-samples, then sss-burley with N per pixel and the history update
 };
 
 /// What an adaptive method keeps per pixel between frames (include/emcv/port/history.h has the layouts).

@@ -13,9 +13,7 @@ std::string_view pass_base_name(pass_id id) {
         case pass_id::lighting: return "lighting";
         case pass_id::sss_tiles: return "sss-tiles";
         case pass_id::sss_adaptive_samples: return "sss-adaptive-samples";
-        case pass_id::sss_adaptive_budget: return "sss-adaptive-budget";
         case pass_id::sss_burley: return "sss-burley";
-        case pass_id::sss_adaptive_update: return "sss-adaptive-update";
         case pass_id::sss_separable_h: return "sss-separable-h";
         case pass_id::sss_separable_v: return "sss-separable-v";
         case pass_id::composite: return "composite";
@@ -41,8 +39,8 @@ std::vector<std::size_t> shadow_casters(const scene& s) {
     return out;
 }
 
-frame_planner::frame_planner(const scene& s, const method& m, int width, int height, bool budget)
-    : s_(&s), m_(m), width_(width), height_(height), budget_(budget), casters_(shadow_casters(s)) {
+frame_planner::frame_planner(const scene& s, const method& m, int width, int height)
+    : s_(&s), m_(m), width_(width), height_(height), casters_(shadow_casters(s)) {
     for (const object& o : s.objects)
         if (s.materials.at(static_cast<std::size_t>(o.material)).scatters()) sss_bounds_.push_back(object_bounds(s, o));
     passes_.reserve(casters_.size() + 8);
@@ -91,10 +89,10 @@ const std::vector<planned_pass>& frame_planner::plan(int frame, const std::vecto
                 passes_.push_back({pass_id::sss_separable_v, 0, 0});
                 break;
             case sss_passes::adaptive:
+                // One pass more than burley's: the samples pass (its last workgroup solves a budget's scale),
+                // then the method's own burley program, which also updates the history.
                 passes_.push_back({pass_id::sss_adaptive_samples, 0, 0});
-                if (budget_) passes_.push_back({pass_id::sss_adaptive_budget, 0, 0});
                 passes_.push_back({pass_id::sss_burley, 0, 0});
-                passes_.push_back({pass_id::sss_adaptive_update, 0, 0});
                 break;
         }
     }
@@ -102,8 +100,8 @@ const std::vector<planned_pass>& frame_planner::plan(int frame, const std::vecto
     return passes_;
 }
 
-std::vector<std::string> pass_list(const scene& s, const method& m, int frame, int width, int height, bool budget) {
-    frame_planner planner(s, m, width, height, budget);
+std::vector<std::string> pass_list(const scene& s, const method& m, int frame, int width, int height) {
+    frame_planner planner(s, m, width, height);
     std::vector<std::string> names;
     for (const planned_pass& p : planner.plan(frame)) names.push_back(pass_name(s, p));
     return names;

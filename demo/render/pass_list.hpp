@@ -29,15 +29,14 @@ enum class pass_id {
     shadow,
     lighting,
     sss_tiles,
-    sss_adaptive_samples,  ///< N per pixel from the reprojected history (budget mode: its variance)
-    sss_adaptive_budget,   ///< budget mode: the scale of N = clamp(lambda sigma) from this frame's histogram
-    sss_burley,
-    sss_adaptive_update,   ///< this frame's (f, G) into the history
+    sss_adaptive_samples,  ///< N per pixel from the reprojected history (budget mode: its variance, and the
+                           ///< scale of N = clamp(lambda sigma) solved by the pass's last workgroup)
+    sss_burley,            ///< adaptive methods: their own program, which also pushes (f, G) into the history
     sss_separable_h,
     sss_separable_v,
     composite,
 };
-inline constexpr std::size_t pass_id_count = 11;
+inline constexpr std::size_t pass_id_count = 9;
 
 /// "gbuffer", "shadow", "lighting", "sss-tiles", "sss-adaptive-samples", "sss-burley", ...
 std::string_view pass_base_name(pass_id id);
@@ -62,9 +61,8 @@ std::vector<std::size_t> shadow_casters(const scene& s);
 /// nothing after the first call.
 class frame_planner {
 public:
-    /// `budget`: the adaptive methods spend a sample budget (sampling_mode_of the tunables), which adds the
-    /// sss-adaptive-budget pass after their samples pass.
-    frame_planner(const scene& s, const method& m, int width, int height, bool budget = false);
+    /// The passes do not depend on the sampling mode: a budget is solved inside the adaptive samples pass.
+    frame_planner(const scene& s, const method& m, int width, int height);
 
     /// The passes of `frame`; `light_scale` multiplies each light's intensity (the window's toggles), empty
     /// for 1 everywhere.
@@ -84,7 +82,6 @@ private:
     const scene* s_;
     method m_;
     int width_, height_;
-    bool budget_;
     std::vector<bounding_sphere> sss_bounds_;
     std::vector<std::size_t> casters_;
     std::vector<planned_pass> passes_;
@@ -95,7 +92,6 @@ private:
 
 /// The names of frame_planner's list for one frame, planned from scratch (no held reference result): what
 /// `--print-passes` prints for frame 0 and the tests compare with.
-std::vector<std::string> pass_list(const scene& s, const method& m, int frame, int width, int height,
-                                   bool budget = false);
+std::vector<std::string> pass_list(const scene& s, const method& m, int frame, int width, int height);
 
 }  // namespace emcv::demo

@@ -65,7 +65,7 @@ struct renderer::impl {
 
     impl(const scene& sc, method me, render_options op)
         : s(sc), m(me), o(validated(std::move(op))), shaders(make_shader_setup(o)), programs(make_pass_programs(shaders)),
-          res(make_gpu_resources(s, m, o.width, o.height)), planner(s, m, o.width, o.height, sampling_mode_of(o.defines).budget), constants(s),
+          res(make_gpu_resources(s, m, o.width, o.height)), planner(s, m, o.width, o.height), constants(s),
           light_scale(s.lights.size(), 1.0f), stamps(make_timestamps(o.timing_mode)) {
         make_history();
         for (std::size_t id = 0; id < pass_id_count; ++id)
@@ -193,7 +193,7 @@ timing renderer::clock() const { return p_->o.timing_mode; }
 
 void renderer::set_method(const method& m) {
     p_->m = m;
-    p_->planner = frame_planner(p_->s, m, p_->o.width, p_->o.height, sampling_mode_of(p_->o.defines).budget);
+    p_->planner = frame_planner(p_->s, m, p_->o.width, p_->o.height);
     upload_materials(p_->res, p_->s, m);  // separable kernels follow the tap count
     p_->make_history();
 }

@@ -88,4 +88,35 @@ float emcv_adaptive_tracked(ivec2 p, vec3 irradiance) {
     return emcv_gamma_luminance(albedo * irradiance * frame.background.w);
 }
 
+/// The history update of SSS pixel p once its samples are taken (the burley pass runs it after its sampling
+/// loop): pushes this frame's values as the mean of the n samples the pixel took (include/emcv/port/ema.h,
+/// *_push_batch: the history estimates the per-sample variance, supp. Eq. 25-27). f = the scattered diffuse
+/// as stored for display, G = the unscattered diffuse (in-frame constant control), both tracked as displayed
+/// gamma-space luminance (emcv_adaptive_tracked).
+///   spvg      moving mean/variance of f (eta 0.2)
+///   cv        EMCM over (f, G) (eta 0.2), a change the control does not explain clipped (emcv_history_push_cv)
+///   cv-notex  moving mean/variance of r = f - G (alpha = 1, eta 0.2)
+/// A pixel that took no samples learns nothing about its noise and is not pushed. A non-finite f or G is
+/// refused by the port (state unchanged); a poisoned stored state is reset, never used.
+void emcv_adaptive_update(ivec2 p, vec3 scattered, vec3 unscattered, uint n) {
+    if (n == 0u) return;
+#if defined(EMCV_ADAPTIVE_CV)
+    vec4 b = imageLoad(history_b, p);
+#else
+    vec4 b = vec4(0.0f);
+#endif
+    EmcvAdaptiveState s;
+    emcv_adaptive_decode(imageLoad(history_a, p), b, s);  // a poisoned texel decodes as a fresh state
+    float f = emcv_adaptive_tracked(p, scattered);
+    float g = emcv_adaptive_tracked(p, unscattered);
+#if defined(EMCV_ADAPTIVE_CV)
+    emcv_history_push_cv(s, f, g, EMCV_HISTORY_ETA_EMCM, float(n));
+#elif defined(EMCV_ADAPTIVE_NOTEX)
+    emcv_moving_stats_push_batch(s, emcv_cv_residual(f, 1.0f, g), EMCV_HISTORY_ETA_MOVING, float(n));
+#else
+    emcv_moving_stats_push_batch(s, f, EMCV_HISTORY_ETA_MOVING, float(n));
+#endif
+    emcv_adaptive_store(p, s);
+}
+
 #endif  // #ifndef EMCV_ADAPTIVE_HISTORY_IO_H

@@ -6,9 +6,11 @@
 // normal: emcv_history_reusable) and the texel is not poisoned, writes that state (or a fresh one) into this
 // frame's history, and writes what the burley pass takes (EMCV_ADAPTIVE_IMG_SAMPLES) from the history's per-sample
 // variance: N under a quality target; under a budget the variance itself (its bits), added to the histogram
-// from which sss-adaptive-budget solves lambda before the burley pass computes N (emcv/port/budget.h).
+// from which the pass's last workgroup solves lambda before the burley pass computes N (emcv/port/budget.h,
+// adaptive/budget_block.h): one pass, no solve dispatch of its own.
 #version 450 core
 
+#define EMCV_BUDGET_GROUP_THREADS (EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE)
 #include "adaptive/history_io.h"
 #include "render/tiles.h"
 
@@ -71,15 +73,8 @@ float own_sigma2(ivec2 p, out uint code) {
     return emcv_adaptive_sub_pixel(p, code) ? emcv_history_no_samples() : emcv_adaptive_sigma2(s);
 }
 
-void main() {
-    ivec2 p = emcv_render_tile_pixel();
-    uint code;
-    float own = own_sigma2(p, code);
-    uint here = gl_LocalInvocationIndex;
-    tile_sigma2[here] = own;
-    tile_code[here] = code;
-    barrier();
-    if (code == 0u) return;
+/// Writes what the burley pass takes at scattering pixel p (see the top of the file).
+void allocate(ivec2 p, float own, uint code) {
     // The per-sample variance a frame's allocation reads is pooled over the pixel's 3x3 neighbours of the same
     // material within its tile (emcv/port/history.h, emcv_history_pool_sigma2): one pixel's estimate rests on
     // about 1 / eta frames of a heavy-tailed residual, and its neighbours see nearly the same noise.
@@ -97,11 +92,25 @@ void main() {
     }
     float sigma2 = emcv_history_pool_sigma2(own, sum, count);
     if (emcv_history_budget_mode()) {
-        // The burley pass turns sigma into N once sss-adaptive-budget has solved lambda from this frame's
-        // histogram: the image carries the variance (or its code) until then.
+        // The burley pass turns sigma into N once lambda is solved from this frame's histogram: the image
+        // carries the variance (or its code) until then.
         emcv_budget_add(sigma2);
         imageStore(samples_image, p, uvec4(floatBitsToUint(sigma2)));
     } else {
         imageStore(samples_image, p, uvec4(uint(emcv_history_count_target(sigma2))));
     }
+}
+
+void main() {
+    uint here = gl_LocalInvocationIndex;
+    if (emcv_history_budget_mode()) emcv_budget_group_clear(here);  // ordered before any add by the barrier below
+    ivec2 p = emcv_render_tile_pixel();
+    uint code;
+    float own = own_sigma2(p, code);
+    tile_sigma2[here] = own;
+    tile_code[here] = code;
+    barrier();
+    if (code != 0u) allocate(p, own, code);
+    // Budget mode: every workgroup (those past the tile count too) reports; the last one solves lambda.
+    if (emcv_history_budget_mode()) emcv_budget_finish_group(here, gl_NumWorkGroups.x * gl_NumWorkGroups.y);
 }

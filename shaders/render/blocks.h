@@ -28,7 +28,7 @@ struct EmcvFrameBlock {
     vec4 background;       // linear rgb, w: exposure
     vec4 ambient;          // linear rgb irradiance, w: tonemap (0 ACES fitted, 1 Reinhard)
     uvec4 counters;        // frame, seed, light count, flags (EMCV_RENDER_FLAG_*)
-    ivec4 sss;             // fixed samples per SSS pixel, adaptive (1: N per pixel from shaders/adaptive), material count, unused
+    ivec4 sss;             // fixed samples per SSS pixel (0 for the adaptive methods: their burley program takes N per pixel), unused, material count, unused
 };
 
 /// One light at this frame (storage buffer EMCV_RENDER_LIGHTS).

@@ -1,44 +1,46 @@
 // SPDX-License-Identifier: MIT
 // Burley screen-space SSS over the SSS tiles (indirect dispatch): N samples per scattering pixel drawn with the
 // widest channel, weighted per channel, sum(w L) / sum(w) (docs/frame.md). Every formula is from
-// include/emcv/port/sss.h. N is the frame's fixed count (burley-N, reference) or, for the adaptive methods,
-// the pixel's own (below).
+// include/emcv/port/sss.h. N is the frame's fixed count (burley-N, reference). Built for an adaptive method
+// (the renderer defines its EMCV_ADAPTIVE_* from the method table, adaptive/history_io.h), the pass takes the
+// pixel's own N from the adaptive-samples pass and, after its sampling loop, pushes the result into the
+// pixel's history (emcv_adaptive_update): sampling and history update are one dispatch.
 #version 450 core
 
 #include "emcv/port/sss.h"
 #include "render/gbuffer_read.h"
 #include "render/tiles.h"
 #include "emcv/port/bindings.h"
-#include "emcv/port/history.h"
-#include "adaptive/bindings.h"
+
+#if defined(EMCV_ADAPTIVE_SPVG) || defined(EMCV_ADAPTIVE_CV) || defined(EMCV_ADAPTIVE_NOTEX)
+#define EMCV_BURLEY_ADAPTIVE 1
+#include "adaptive/history_io.h"
+#endif
 
 layout(local_size_x = EMCV_RENDER_TILE_SIZE, local_size_y = EMCV_RENDER_TILE_SIZE) in;
 
+#if defined(EMCV_BURLEY_ADAPTIVE)
+// Read back by the history update: the value as stored (binary16), which is what the display shows.
+layout(rgba16f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_SSS_OUT)) uniform image2D out_scattered;
+#else
 layout(rgba16f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_SSS_OUT)) writeonly uniform image2D out_scattered;
+#endif
 layout(r32ui, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_COUNT)) writeonly uniform uimage2D out_count;
-// Adaptive methods (frame.sss.y = 1): N per pixel from the adaptive-samples pass (shaders/adaptive); in budget
-// mode that pass leaves the per-sample variance and N = clamp(lambda sigma) is taken here, with the lambda that
-// sss-adaptive-budget solved from the same frame's variances.
-layout(r32ui, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_SAMPLES)) readonly uniform uimage2D adaptive_samples;
-
-// Budget mode's scale lambda: the first member of the budget block (emcv/port/budget.h, EmcvBudgetBlock) that
-// sss-adaptive-budget solved this frame. Declared alone, 4 bytes: without a budget the slot holds another buffer
-// (the separable kernels', never read then), and a block larger than the bound buffer is undefined behaviour even
-// unread (llvmpipe's LeakSanitizer run crashed at exit with the whole block declared here).
-layout(std430, EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_BUDGET)) readonly buffer BudgetScale {
-    float lambda;
-} budget_scale;
 
 shared uint tile_sample_sum;
 shared uint tile_sample_max;
 
-/// The adaptive methods' N at p (see above).
+#if defined(EMCV_BURLEY_ADAPTIVE)
+/// The pixel's N from the adaptive-samples pass: its count under a quality target; in budget mode that pass
+/// leaves the per-sample variance and N = clamp(lambda sigma) is taken here, with the lambda its last
+/// workgroup solved from the same frame's variances.
 uint adaptive_count(ivec2 p) {
-    uint stored = imageLoad(adaptive_samples, p).x;
+    uint stored = imageLoad(samples_image, p).x;
     if (!emcv_history_budget_mode()) return stored;
     float u = emcv_budget_u(uint(p.x), uint(p.y), frame.counters.x, frame.counters.y);
-    return uint(emcv_history_count_spend(uintBitsToFloat(stored), budget_scale.lambda, u));
+    return uint(emcv_history_count_spend(uintBitsToFloat(stored), budget.lambda, u));
 }
+#endif
 
 /// Scatters pixel p; returns the samples it took (0 off screen and for non-scattering pixels).
 uint scatter(ivec2 p) {
@@ -53,7 +55,11 @@ uint scatter(ivec2 p) {
     float pixels_per_mm = emcv_sss_pixels_per_mm(frame.projection.x, frame.viewport.x, z, mm_per_unit);
     bool approximate = (frame.counters.w & EMCV_RENDER_FLAG_APPROXIMATE_CDF) != 0u;
     vec2 rotation = emcv_sss_rotation(uint(p.x), uint(p.y), frame.counters.x, frame.counters.y);
-    uint n = frame.sss.y != 0 ? adaptive_count(p) : uint(frame.sss.x);
+#if defined(EMCV_BURLEY_ADAPTIVE)
+    uint n = adaptive_count(p);
+#else
+    uint n = uint(frame.sss.x);
+#endif
 
     vec3 sum_wl = vec3(0.0f);
     vec3 sum_w = vec3(0.0f);
@@ -74,6 +80,11 @@ uint scatter(ivec2 p) {
     vec3 scattered = mix(centre, sum_wl / max(sum_w, vec3(1e-30f)), greaterThan(sum_w, vec3(0.0f)));
     imageStore(out_scattered, p, vec4(scattered, 1.0f));
     imageStore(out_count, p, uvec4(n));
+#if defined(EMCV_BURLEY_ADAPTIVE)
+    // The invocation reads its own store back: the binary16 value the display shows (and the separate update
+    // pass this replaced used to read).
+    emcv_adaptive_update(p, imageLoad(out_scattered, p).xyz, centre, n);
+#endif
     return n;
 }
 

@@ -70,11 +70,15 @@ private:
     std::optional<std::string> old_;
 };
 
-/// The defines a shader is built with by the renderer: the adaptive passes once per adaptive method's define
-/// (method table), every other shader once without.
+/// The defines a shader is built with by the renderer: a shader that includes the adaptive history
+/// (adaptive/history_io.h) once per adaptive method's define (method table); the burley pass, which includes it
+/// only when one is defined, also once without (burley-N); every other shader once without.
 std::vector<std::string> method_defines(const fs::path& shader) {
-    if (shader.parent_path().filename() != "adaptive") return {""};
+    const std::string text = emcv_test::read_file(shader);
+    const bool includes_history = text.find("#include \"adaptive/history_io.h\"") != std::string::npos;
+    if (!includes_history) return {""};
     std::vector<std::string> out;
+    if (text.find("defined(EMCV_ADAPTIVE_SPVG)") != std::string::npos) out.emplace_back("");
     for (const emcv::demo::method_row& r : emcv::demo::method_table())
         if (!r.adaptive_define.empty()) out.emplace_back(r.adaptive_define);
     return out;

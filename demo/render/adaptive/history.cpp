@@ -27,8 +27,9 @@ static_assert(EMCV_ADAPTIVE_IMG_SAMPLES != EMCV_RENDER_IMG_SSS_OUT && EMCV_ADAPT
               EMCV_ADAPTIVE_IMG_HISTORY_A != EMCV_ADAPTIVE_IMG_SAMPLES && EMCV_ADAPTIVE_IMG_HISTORY_B != EMCV_ADAPTIVE_IMG_SAMPLES &&
               EMCV_ADAPTIVE_IMG_HISTORY_A != EMCV_ADAPTIVE_IMG_HISTORY_B);
 
-// The burley pass reads lambda alone through a 4-byte block at the budget's slot (shaders/render/sss_burley.comp.glsl).
-static_assert(offsetof(emcv::port::EmcvBudgetBlock, lambda) == 0);
+// The adaptive burley pass also writes its output and count images: apart from the history's.
+static_assert(EMCV_RENDER_IMG_SSS_OUT != EMCV_ADAPTIVE_IMG_SAMPLES && EMCV_RENDER_IMG_SSS_OUT != EMCV_ADAPTIVE_IMG_HISTORY_A &&
+              EMCV_RENDER_IMG_SSS_OUT != EMCV_ADAPTIVE_IMG_HISTORY_B && EMCV_RENDER_IMG_COUNT != EMCV_ADAPTIVE_IMG_SAMPLES);
 
 namespace emcv::demo::adaptive {
 
@@ -60,8 +61,7 @@ history::history(const method& m, int width, int height, const gl::preprocess_op
     const std::filesystem::path dir = shader_dir / "adaptive";
     const gl::preprocess_options options = with_method_define(shaders, row_of(m));
     samples_program_ = gl::program::compute(dir / "samples.comp.glsl", options);
-    update_program_ = gl::program::compute(dir / "update.comp.glsl", options);
-    if (budget_mode_) budget_program_ = gl::program::compute(dir / "budget.comp.glsl", options);
+    burley_program_ = gl::program::compute(shader_dir / "render" / "sss_burley.comp.glsl", options);
     // Zeroed: no histogram yet (the first frame's pixels have no variance and take B), lambda 0.
     budget_ = gl::buffer::create();
     const emcv::port::EmcvBudgetBlock empty{};
@@ -75,14 +75,6 @@ history::history(const method& m, int width, int height, const gl::preprocess_op
     prev_depth_ = make_cleared_target(GL_R32F, width, height);
     prev_normal_ = make_cleared_target(GL_RGBA16F, width, height);
     prev_material_ = make_cleared_target(GL_R8UI, width, height);  // 0 = background: every pixel starts fresh
-}
-
-void history::record_budget() {
-    if (!budget_mode_) throw std::logic_error("adaptive history: the budget pass runs in budget mode only");
-    budget_program_.use();
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMCV_ADAPTIVE_BUDGET, budget_.id());
-    glDispatchCompute(1, 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 emcv::port::EmcvBudgetBlock history::read_budget() const {
@@ -110,16 +102,18 @@ void history::record_samples() {
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
-void history::record_update(GLuint scattered, GLuint taken) {
+void history::bind_for_update() const {
     const std::size_t cur = static_cast<std::size_t>(current_);
-    update_program_.use();
-    glBindTextureUnit(EMCV_RENDER_TEX_SSS_IN, scattered);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMCV_ADAPTIVE_BUDGET, budget_.id());
     glBindImageTexture(EMCV_ADAPTIVE_IMG_HISTORY_A, a_[cur].id(), 0, GL_FALSE, 0, GL_READ_WRITE, format_a(layout_));
     if (layout_ == history_layout::emcm2)
         glBindImageTexture(EMCV_ADAPTIVE_IMG_HISTORY_B, b_[cur].id(), 0, GL_FALSE, 0, GL_READ_WRITE, format_b);
-    glBindImageTexture(EMCV_RENDER_IMG_COUNT, taken, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
-    glDispatchComputeIndirect(0);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    glBindImageTexture(EMCV_ADAPTIVE_IMG_SAMPLES, samples_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+}
+
+void history::use_burley() {
+    burley_program_.use();
+    bind_for_update();
 }
 
 void history::end_frame(GLuint depth, GLuint normal, GLuint material, bool updated) {

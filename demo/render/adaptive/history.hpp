@@ -37,7 +37,9 @@ struct texel {
 class history {
 public:
     /// Allocates the textures of the method's history layout (cleared: every pixel starts fresh) and builds
-    /// the two adaptive passes from shader_dir/adaptive with the method's define (method table). Throws
+    /// the method's two programs with its define (method table): the adaptive-samples pass
+    /// (shader_dir/adaptive) and its burley pass (shader_dir/render/sss_burley.comp.glsl, which then takes N
+    /// per pixel and updates the history after sampling). Throws
     /// gl::shader_error or std::runtime_error naming the problem, std::invalid_argument for a method that
     /// keeps no history.
     history(const method& m, int width, int height, const gl::preprocess_options& shaders,
@@ -47,18 +49,20 @@ public:
     /// Whether the shader options select budget mode (sampling_mode_of their defines).
     bool budget_mode() const noexcept { return budget_mode_; }
 
-    /// The adaptive-budget pass (budget mode only; throws std::logic_error otherwise).
-    void record_budget();
     /// The budget block as the last solve left it (lambda, planned total); tests and diagnostics.
     emcv::port::EmcvBudgetBlock read_budget() const;
 
     /// The adaptive-samples pass. Expects what the renderer's SSS passes expect bound (frame UBO, materials,
     /// tile list as the GL_DISPATCH_INDIRECT_BUFFER, G-buffer and motion textures at their render slots).
-    /// Binds the samples image at EMCV_ADAPTIVE_IMG_SAMPLES, where the burley pass reads N.
+    /// Writes N (budget mode: the variance) into the samples image; in budget mode its last workgroup also
+    /// solves lambda into the budget block.
     void record_samples();
-    /// The adaptive-update pass; `scattered` is the burley output (RGBA16F), bound at EMCV_RENDER_TEX_SSS_IN,
-    /// `taken` the samples it took per pixel (R32UI, bound at EMCV_RENDER_IMG_COUNT).
-    void record_update(GLuint scattered, GLuint taken);
+    /// Makes the method's burley program current and binds what it reads and updates besides the burley
+    /// pass's own outputs: this frame's history images, the samples image and the budget block.
+    void use_burley();
+    /// Binds this frame's history images, the samples image and the budget block at their adaptive slots
+    /// (use_burley; tests that run the history update on given values with their own probe program).
+    void bind_for_update() const;
     /// End of every frame of the method: keeps this frame's G-buffer (depth R32F, normal RGBA16F, material
     /// R8UI) for the next reprojection and swaps the histories. A frame without SSS pass leaves the history
     /// unknown, so the next frame starts fresh everywhere.
@@ -79,7 +83,7 @@ private:
     history_layout layout_;
     bool budget_mode_;
     int width_, height_;
-    gl::program samples_program_, update_program_, budget_program_;
+    gl::program samples_program_, burley_program_;
     gl::buffer budget_;  // EmcvBudgetBlock: allocated in every mode (the passes declare it), used in budget mode
     std::array<gl::texture_2d, 2> a_, b_;  // ping-pong: [current_] is this frame's
     int current_ = 0;

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The SSS passes: sss-tiles (the tile list and its indirect dispatch), sss-burley, sss-separable-h/-v, and the
-// adaptive methods' sss-adaptive-samples / sss-adaptive-update around sss-burley (demo/render/adaptive).
+// adaptive methods' sss-adaptive-samples before their own sss-burley program (demo/render/adaptive).
 #include "passes.hpp"
 
 #include "emcv/port/bindings.h"
@@ -35,26 +35,22 @@ void sss_tiles(const frame_context& c) {
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
-void sss_adaptive_budget(const frame_context& c) {
-    c.history->record_budget();
-}
-
 void sss_adaptive_samples(const frame_context& c) {
     c.history->record_samples();
 }
 
 void sss_burley(const frame_context& c) {
     const gpu_resources& r = c.res;
-    c.programs.burley.use();
+    // An adaptive method's burley program reads N per pixel and updates the history it binds (the adaptive
+    // methods always have one: frame_context's note above); it reads its own output back (read-write).
+    if (c.history) c.history->use_burley();
+    else c.programs.burley.use();
     glBindImageTexture(EMCV_RENDER_IMG_COUNT, r.counts.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32UI);
-    glBindImageTexture(EMCV_RENDER_IMG_SSS_OUT, r.sss_out.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(EMCV_RENDER_IMG_SSS_OUT, r.sss_out.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
     glDispatchComputeIndirect(0);
     image_barrier_for_reads();
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the stats block is read back after the frame
-}
-
-void sss_adaptive_update(const frame_context& c) {
-    c.history->record_update(c.res.sss_out.id(), c.res.counts.id());
+    // the stats block is read back after the frame; an adaptive history may be (history::read)
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
 
 void sss_separable(const frame_context& c, int direction) {

@@ -45,6 +45,9 @@ struct EmcvBudgetBlock {
     float planned;        ///< the total the solve aimed at: B (histogram pixels + zero_pixels)
     uint default_pixels;  ///< pixels without a variance yet (they take B, outside the solve; diagnostic)
     uint zero_pixels;     ///< pixels that take no samples (sub-pixel kernels): their share goes to the others
+    /// Workgroups of this frame's samples pass that have added their pixels: the last one to finish solves
+    /// lambda and resets the block for the next frame (one pass, no separate solve dispatch).
+    uint finished_groups;
     uint bin_count[EMCV_BUDGET_BINS];     ///< pixels per bin
     uint bin_fraction[EMCV_BUDGET_BINS];  ///< sum of the 10 mantissa bits under the bin's 3
 };

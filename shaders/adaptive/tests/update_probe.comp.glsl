@@ -1,0 +1,22 @@
+// SPDX-License-Identifier: MIT
+// Test probe (tests/adaptive/test_history_gpu.cpp): the history update that the adaptive burley pass runs after
+// its sampling loop (emcv_adaptive_update, adaptive/history_io.h), fed with given values instead: the scattered
+// diffuse from a texture and the samples taken from an image, so that the GPU's estimators can be compared with
+// the C++ ones on chosen streams.
+#version 450 core
+
+#include "adaptive/history_io.h"
+#include "render/tiles.h"
+
+layout(local_size_x = EMCV_RENDER_TILE_SIZE, local_size_y = EMCV_RENDER_TILE_SIZE) in;
+
+layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_SSS_IN)) uniform sampler2D scattered_diffuse;
+layout(r32ui, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_COUNT)) readonly uniform uimage2D taken_samples;
+
+void main() {
+    ivec2 p = emcv_render_tile_pixel();
+    if (!emcv_render_on_screen(p)) return;
+    if (!emcv_render_scatters(emcv_render_material_code(p))) return;
+    emcv_adaptive_update(p, texelFetch(scattered_diffuse, p, 0).xyz, texelFetch(lit_diffuse, p, 0).xyz,
+                         imageLoad(taken_samples, p).x);
+}
