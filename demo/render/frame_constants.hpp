@@ -19,9 +19,10 @@ public:
     explicit frame_constants(const scene& s) : lights_(s.lights.size()) {}
 
     /// Fills and uploads the frame block and the light blocks. `sss_shown`: the composite reads the scattered
-    /// diffuse (an SSS pass ran, or the reference shows its held result). `light_scale`: one factor per light.
+    /// diffuse (an SSS pass ran, or the reference shows its held result). `sss_passes`: SSS passes run this
+    /// frame (the lighting pass lists their tiles). `light_scale`: one factor per light.
     void upload(const gpu_resources& r, const scene& s, const method& m, const render_options& o, int frame,
-                const view_matrices& v, bool sss_shown, const std::vector<float>& light_scale);
+                const view_matrices& v, bool sss_shown, bool sss_passes, const std::vector<float>& light_scale);
     /// The next frame's motion vectors start from the camera of the frame uploaded last.
     void end_frame(const view_matrices& v) {
         prev_view_proj_ = v.view_proj;

@@ -25,7 +25,7 @@ struct method {
     bool operator!=(const method& o) const { return !(*this == o); }
 };
 
-/// The SSS passes a method records between `sss-tiles` and `composite` (pass_list.hpp spells them out).
+/// The SSS passes a method records between `lighting` and `composite` (pass_list.hpp spells them out).
 enum class sss_passes {
     none,       ///< no SSS pass: the composite shows the unscattered diffuse
     burley,     ///< sss-burley with a fixed count per pixel

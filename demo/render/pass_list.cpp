@@ -11,7 +11,6 @@ std::string_view pass_base_name(pass_id id) {
         case pass_id::gbuffer: return "gbuffer";
         case pass_id::shadow: return "shadow";
         case pass_id::lighting: return "lighting";
-        case pass_id::sss_tiles: return "sss-tiles";
         case pass_id::sss_adaptive_samples: return "sss-adaptive-samples";
         case pass_id::sss_burley: return "sss-burley";
         case pass_id::sss_separable_h: return "sss-separable-h";
@@ -80,7 +79,6 @@ const std::vector<planned_pass>& frame_planner::plan(int frame, const std::vecto
         if (light_shines(s.lights[casters_[layer]], frame)) passes_.push_back({pass_id::shadow, casters_[layer], layer});
     passes_.push_back({pass_id::lighting, 0, 0});
     if (scatters_) {
-        passes_.push_back({pass_id::sss_tiles, 0, 0});
         switch (row_of(m_).passes) {
             case sss_passes::none: break;
             case sss_passes::burley: passes_.push_back({pass_id::sss_burley, 0, 0}); break;

@@ -4,11 +4,12 @@
 // what is printed and what runs come from this one place.
 //   gbuffer          linear view depth R32F, normal, albedo, material id, motion (previous frame's camera)
 //   shadow:<light>   one per light with casts_shadow that shines this frame (point lights never cast here)
-//   lighting         diffuse irradiance without albedo (RGBA16F) kept apart from specular GGX (RGBA16F)
-//   sss-tiles        8x8 tiles holding an SSS pixel, appended on the GPU + indirect dispatch arguments
+//   lighting         diffuse irradiance without albedo (RGBA16F) kept apart from specular GGX (RGBA16F); on a
+//                    frame with SSS passes also the 8x8 tiles holding an SSS pixel, appended on the GPU, and
+//                    their indirect dispatch arguments (render/tiles.h): no SSS pass runs over the full screen
 //   the method's SSS passes (method.hpp, sss_passes), over the SSS tiles only (indirect dispatch)
 //   composite        post-scatter albedo * scattered (or unscattered) diffuse + specular, tonemap, sRGB
-// "sss-tiles" and the SSS passes are not recorded for a method that does not scatter, for a scene with no SSS
+// The SSS passes (and the tile list) are not recorded for a method that does not scatter, for a scene with no SSS
 // material, when every SSS object lies outside the view frustum, or when the reference's inputs are those of
 // the result it already holds (it is shown again).
 #pragma once
@@ -27,8 +28,7 @@ namespace emcv::demo {
 enum class pass_id {
     gbuffer,
     shadow,
-    lighting,
-    sss_tiles,
+    lighting,  ///< also lists the SSS tiles on frames with SSS passes
     sss_adaptive_samples,  ///< N per pixel from the reprojected history (budget mode: its variance, and the
                            ///< scale of N = clamp(lambda sigma) solved by the pass's last workgroup)
     sss_burley,            ///< adaptive methods: their own program, which also pushes (f, G) into the history
@@ -36,9 +36,9 @@ enum class pass_id {
     sss_separable_v,
     composite,
 };
-inline constexpr std::size_t pass_id_count = 9;
+inline constexpr std::size_t pass_id_count = 8;
 
-/// "gbuffer", "shadow", "lighting", "sss-tiles", "sss-adaptive-samples", "sss-burley", ...
+/// "gbuffer", "shadow", "lighting", "sss-adaptive-samples", "sss-burley", ...
 std::string_view pass_base_name(pass_id id);
 /// The passes counted in frame_stats::sss_ms.
 bool is_sss_pass(pass_id id);

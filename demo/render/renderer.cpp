@@ -61,7 +61,6 @@ struct renderer::impl {
     std::deque<frame_times> unclaimed;  // measured frames not yet taken (take_times)
     frame_stats stats;
     frame_stats held_reference;  // the reference's statistics, shown again while it reuses its result
-    bool counts_dirty = true;
 
     impl(const scene& sc, method me, render_options op)
         : s(sc), m(me), o(validated(std::move(op))), shaders(make_shader_setup(o)), programs(make_pass_programs(shaders)),
@@ -144,9 +143,10 @@ struct renderer::impl {
         const std::vector<planned_pass>& plan = planner.plan(frame, light_scale);
         const view_matrices& v = planner.view();
         const bool visible = planner.shows_sss();
-        constants.upload(res, s, m, o, frame, v, visible, light_scale);
+        constants.upload(res, s, m, o, frame, v, visible, planner.scatters(), light_scale);
         const frame_context context{res, programs, s, m, history ? &*history : nullptr, frame,
-                                    div_up(o.width, EMCV_RENDER_TILE_SIZE), div_up(o.height, EMCV_RENDER_TILE_SIZE)};
+                                    div_up(o.width, EMCV_RENDER_TILE_SIZE), div_up(o.height, EMCV_RENDER_TILE_SIZE),
+                                    planner.scatters()};
         passes::bind_frame_resources(context);
         // A stamp at every pass boundary (gl/timestamps.hpp): the wall clock finishes the GPU's work there, GPU
         // timestamps never wait.
@@ -162,12 +162,6 @@ struct renderer::impl {
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
         glBindVertexArray(0);
 
-        if (planner.scatters()) {
-            counts_dirty = true;  // sss-tiles cleared the counts and the SSS passes wrote them
-        } else if (!visible && counts_dirty) {
-            glClearTexImage(res.counts.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);  // no samples this frame
-            counts_dirty = false;
-        }
         if (history) history->end_frame(res.gb_depth.id(), res.gb_normal.id(), res.gb_material.id(), visible);
         constants.end_frame(v);
 
@@ -255,9 +249,14 @@ gl::float_image renderer::sss_mask() const {
 }
 
 gl::float_image renderer::sample_counts() const {
-    const std::vector<std::uint32_t> n = read_uint_texture(p_->res.counts.id(), width(), height(), GL_UNSIGNED_INT);
     gl::float_image img = single_channel(width(), height());
-    std::transform(n.begin(), n.end(), img.pixels.begin(), [](std::uint32_t x) { return static_cast<float>(x); });
+    if (!p_->planner.shows_sss()) return img;  // no samples this frame
+    // The SSS passes write the count of every pixel of the SSS tiles; the texture is never cleared (no
+    // full-screen work per frame for a read-back), so the pixels that do not scatter read 0 here. A frame that
+    // shows the reference's held result shows the counts it was made with.
+    const std::vector<std::uint32_t> n = read_uint_texture(p_->res.counts.id(), width(), height(), GL_UNSIGNED_INT);
+    const gl::float_image mask = sss_mask();
+    for (std::size_t i = 0; i < n.size(); ++i) img.pixels[i] = mask.pixels[i] > 0.5f ? static_cast<float>(n[i]) : 0.0f;
     return img;
 }
 

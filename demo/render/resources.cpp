@@ -134,7 +134,7 @@ void make_frame_targets(gpu_resources& r) {
     r.lit_specular = make_target(GL_RGBA16F, width, height);
     r.sss_out = make_target(GL_RGBA16F, width, height);
     r.sss_temp = make_target(GL_RGBA16F, width, height);
-    r.counts = make_target(GL_R32UI, width, height);
+    r.counts = make_cleared_target(GL_R32UI, width, height);  // 0 for the methods that never write it
     r.linear_out = make_target(GL_RGBA16F, width, height);
     r.display_out = make_target(GL_RGBA8, width, height);
 
@@ -212,8 +212,6 @@ pass_programs make_pass_programs(const shader_setup& shaders) {
     p.gbuffer = gl::program::graphics(dir / "gbuffer.vert.glsl", dir / "gbuffer.frag.glsl", pre);
     p.shadow = gl::program::graphics(dir / "shadow.vert.glsl", dir / "shadow.frag.glsl", pre);
     p.lighting = gl::program::compute(dir / "lighting.comp.glsl", pre);
-    p.tiles = gl::program::compute(dir / "sss_tiles.comp.glsl", pre);
-    p.dispatch = gl::program::compute(dir / "sss_dispatch.comp.glsl", pre);
     p.burley = gl::program::compute(dir / "sss_burley.comp.glsl", pre);
     p.separable = gl::program::compute(dir / "sss_separable.comp.glsl", pre);
     p.composite = gl::program::compute(dir / "composite.comp.glsl", pre);

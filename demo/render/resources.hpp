@@ -26,7 +26,7 @@ inline constexpr int shadow_resolution = 1024;
 
 /// The GLSL programs of the passes (the adaptive passes' own live in adaptive::history).
 struct pass_programs {
-    gl::program gbuffer, shadow, lighting, tiles, dispatch, burley, separable, composite;
+    gl::program gbuffer, shadow, lighting, burley, separable, composite;
 };
 
 /// The shader options every pass is built with: include roots (render_options, else $EMCV_SHADER_DIR /
@@ -91,6 +91,7 @@ struct frame_context {
     adaptive::history* history;  ///< the adaptive methods' (nullptr for the others)
     int frame;
     GLuint groups_x, groups_y;   ///< full-screen compute dispatch, EMCV_RENDER_TILE_SIZE pixels a side
+    bool sss_passes;             ///< SSS passes run this frame: the lighting pass lists their tiles
 };
 
 }  // namespace emcv::demo

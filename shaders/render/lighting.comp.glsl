@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: MIT
 // Lighting pass: per pixel, the diffuse irradiance / pi without albedo (what scattering blurs, post-scatter
 // texturing as UE) and the specular GGX radiance, kept apart so the specular never scatters (docs/frame.md).
+// On frames whose SSS passes follow (EMCV_RENDER_FLAG_SSS_TILES) its workgroups, one per 8x8 tile, also list the
+// SSS tiles those passes dispatch over (render/tiles.h): the material is read here anyway.
 #version 450 core
 
 #include "emcv/port/port.h"
 #include "render/gbuffer_read.h"
+#include "render/tiles.h"
 
 layout(local_size_x = EMCV_RENDER_TILE_SIZE, local_size_y = EMCV_RENDER_TILE_SIZE) in;
 
@@ -35,15 +38,8 @@ float ggx_specular(float ndl, float ndv, float ndh, float roughness) {
     return distribution * visibility;
 }
 
-void main() {
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    if (!emcv_render_on_screen(p)) return;
-    uint code = emcv_render_material_code(p);
-    if (code == 0u) {
-        imageStore(out_diffuse, p, vec4(0.0f));
-        imageStore(out_specular, p, vec4(0.0f));
-        return;
-    }
+/// Lights pixel p (material `code`, not 0).
+void shade(ivec2 p, uint code) {
     EmcvMaterial m = materials[code - 1u];
     vec3 world = emcv_render_world_position(p, emcv_render_depth(p));
     vec3 n = normalize(texelFetch(gbuffer_normal, p, 0).xyz);
@@ -75,4 +71,17 @@ void main() {
     }
     imageStore(out_diffuse, p, vec4(irradiance / pi, 1.0f));
     imageStore(out_specular, p, vec4(specular, 1.0f));
+}
+
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    bool on_screen = emcv_render_on_screen(p);
+    uint code = on_screen ? emcv_render_material_code(p) : 0u;
+    if (on_screen && code == 0u) {
+        imageStore(out_diffuse, p, vec4(0.0f));
+        imageStore(out_specular, p, vec4(0.0f));
+    } else if (on_screen) {
+        shade(p, code);
+    }
+    if ((frame.counters.w & EMCV_RENDER_FLAG_SSS_TILES) != 0u) emcv_render_classify_tile(emcv_render_scatters(code));
 }

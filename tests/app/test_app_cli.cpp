@@ -196,7 +196,7 @@ TEST_CASE("the pass list (--print-passes) is printed per method without a GL con
     REQUIRE(r.exit_code == 0);
     CHECK(r.out.find("method diffuse:\n  frames 0-2: gbuffer, shadow:key, lighting, composite\n") !=
           std::string::npos);
-    CHECK(r.out.find("method burley-8:\n  frames 0-2: gbuffer, shadow:key, lighting, sss-tiles, sss-burley, "
+    CHECK(r.out.find("method burley-8:\n  frames 0-2: gbuffer, shadow:key, lighting, sss-burley, "
                      "composite\n") != std::string::npos);
     CHECK(r.out.find("method reference") == std::string::npos);
     // The adaptive methods take one pass more than burley's, in either sampling mode (a budget is solved inside
@@ -205,11 +205,11 @@ TEST_CASE("the pass list (--print-passes) is printed per method without a GL con
         const emcv_test::command_result b = run_demo(scene + "--method cv,burley-8" + mode, "EMCV_GL_PLATFORMS=none");
         INFO(b.err);
         REQUIRE(b.exit_code == 0);
-        CHECK(b.out.find("method cv:\n  frames 0-2: gbuffer, shadow:key, lighting, sss-tiles, sss-adaptive-samples, "
+        CHECK(b.out.find("method cv:\n  frames 0-2: gbuffer, shadow:key, lighting, sss-adaptive-samples, "
                          "sss-burley, composite\n") != std::string::npos);
     }
     const emcv_test::command_result b = run_demo(scene + "--method cv,burley-8 --spp-budget 8", "EMCV_GL_PLATFORMS=none");
-    CHECK(b.out.find("method burley-8:\n  frames 0-2: gbuffer, shadow:key, lighting, sss-tiles, sss-burley, "
+    CHECK(b.out.find("method burley-8:\n  frames 0-2: gbuffer, shadow:key, lighting, sss-burley, "
                      "composite\n") != std::string::npos);
 }
 
@@ -221,7 +221,7 @@ TEST_CASE("print-passes walks the renderer's planner: the reference records no S
     INFO(r.err);
     REQUIRE(r.exit_code == 0);
     CHECK(r.out == "method reference:\n"
-                   "  frames 0-0: gbuffer, shadow:key, lighting, sss-tiles, sss-burley, composite\n"
+                   "  frames 0-0: gbuffer, shadow:key, lighting, sss-burley, composite\n"
                    "  frames 1-2: gbuffer, shadow:key, lighting, composite\n");
 }
 

@@ -53,9 +53,9 @@ TEST_CASE("the planner lists each row's SSS passes, and only for a scene that ca
     const scene sphere = emcv::test::sphere_on_floor();
     const std::vector<std::pair<sss_passes, std::vector<std::string>>> expected{
         {sss_passes::none, {}},
-        {sss_passes::burley, {"sss-tiles", "sss-burley"}},
-        {sss_passes::separable, {"sss-tiles", "sss-separable-h", "sss-separable-v"}},
-        {sss_passes::adaptive, {"sss-tiles", "sss-adaptive-samples", "sss-burley"}},
+        {sss_passes::burley, {"sss-burley"}},
+        {sss_passes::separable, {"sss-separable-h", "sss-separable-v"}},
+        {sss_passes::adaptive, {"sss-adaptive-samples", "sss-burley"}},
     };
     for (const method& m : all_methods()) {
         INFO("method " << m.name());
@@ -76,13 +76,13 @@ TEST_CASE("the reference's planner drops its SSS passes while its inputs hold, a
         for (const planned_pass& p : plan) n += is_sss_pass(p.id) ? 1 : 0;
         return n;
     };
-    CHECK(sss_passes_of(planner.plan(0)) == 2);
+    CHECK(sss_passes_of(planner.plan(0)) == 1);
     CHECK_FALSE(planner.reuses_result());
     CHECK(sss_passes_of(planner.plan(1)) == 0);  // same camera and lights
     CHECK(planner.reuses_result());
-    CHECK(sss_passes_of(planner.plan(2, {0.0f})) == 2);  // the first light off: new inputs
+    CHECK(sss_passes_of(planner.plan(2, {0.0f})) == 1);  // the first light off: new inputs
     planner.reset();
-    CHECK(sss_passes_of(planner.plan(3, {0.0f})) == 2);  // nothing held after a reset
+    CHECK(sss_passes_of(planner.plan(3, {0.0f})) == 1);  // nothing held after a reset
 }
 
 TEST_CASE("the tunables are exactly the #ifndef blocks of the port headers") {

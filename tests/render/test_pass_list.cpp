@@ -29,14 +29,14 @@ const method burley16{method::kind::burley, 16};
 TEST_CASE("pass lists of scenes built in code") {
     const scene sphere = emcv::test::sphere_on_floor();
     CHECK(pass_list(sphere, burley16, 0, 64, 48) ==
-          std::vector<std::string>{"gbuffer", "shadow:key", "shadow:spot", "lighting", "sss-tiles", "sss-burley", "composite"});
+          std::vector<std::string>{"gbuffer", "shadow:key", "shadow:spot", "lighting", "sss-burley", "composite"});
     CHECK(pass_list(sphere, method{method::kind::separable, 17}, 0, 64, 48) ==
-          std::vector<std::string>{"gbuffer", "shadow:key", "shadow:spot", "lighting", "sss-tiles", "sss-separable-h",
+          std::vector<std::string>{"gbuffer", "shadow:key", "shadow:spot", "lighting", "sss-separable-h",
                                    "sss-separable-v", "composite"});
     // The adaptive methods: one pass more than burley's, the samples pass before their own sss-burley (which
     // also updates the history); a budget is solved inside the samples pass, so both modes record this list.
     CHECK(pass_list(sphere, method{method::kind::cv, 0}, 0, 64, 48) ==
-          std::vector<std::string>{"gbuffer", "shadow:key", "shadow:spot", "lighting", "sss-tiles", "sss-adaptive-samples",
+          std::vector<std::string>{"gbuffer", "shadow:key", "shadow:spot", "lighting", "sss-adaptive-samples",
                                    "sss-burley", "composite"});
     CHECK(pass_list(sphere, method{method::kind::cv, 0}, 0, 64, 48).size() ==
           pass_list(sphere, burley16, 0, 64, 48).size() + 1);

@@ -13,7 +13,6 @@ namespace emcv::demo::passes {
 void gbuffer(const frame_context& c);
 void shadow(const frame_context& c, const planned_pass& p);
 void lighting(const frame_context& c);
-void sss_tiles(const frame_context& c);
 void sss_adaptive_samples(const frame_context& c);
 void sss_burley(const frame_context& c);
 /// direction 0: horizontal, from the lighting; 1: vertical, from the horizontal pass's result.

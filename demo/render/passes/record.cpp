@@ -11,7 +11,6 @@ void record(const planned_pass& p, const frame_context& c) {
         case pass_id::gbuffer: gbuffer(c); return;
         case pass_id::shadow: shadow(c, p); return;
         case pass_id::lighting: lighting(c); return;
-        case pass_id::sss_tiles: sss_tiles(c); return;
         case pass_id::sss_adaptive_samples: sss_adaptive_samples(c); return;
         case pass_id::sss_burley: sss_burley(c); return;
         case pass_id::sss_separable_h: sss_separable(c, 0); return;

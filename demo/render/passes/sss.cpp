@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The SSS passes: sss-tiles (the tile list and its indirect dispatch), sss-burley, sss-separable-h/-v, and the
-// adaptive methods' sss-adaptive-samples before their own sss-burley program (demo/render/adaptive).
+// The SSS passes: sss-burley, sss-separable-h/-v, and the adaptive methods' sss-adaptive-samples before their
+// own sss-burley program (demo/render/adaptive). They dispatch indirectly over the SSS tiles that the lighting
+// pass listed (render/tiles.h).
 #include "passes.hpp"
 
 #include "emcv/port/bindings.h"
@@ -18,22 +19,7 @@ namespace emcv::demo::passes {
 
 // frame_planner plans the adaptive passes only for the adaptive methods (method table), and the renderer makes a
 // history for exactly those: c.history is set wherever they run. The SSS passes dispatch indirectly from the
-// tile list that sss-tiles wrote (bound once per frame, passes.hpp).
-
-void sss_tiles(const frame_context& c) {
-    const gpu_resources& r = c.res;
-    const GLuint header[4] = {0u, 0u, 1u, 0u};  // no tiles yet: the dispatch pass writes x, y from w
-    glNamedBufferSubData(r.tiles_ssbo.id(), 0, sizeof header, header);
-    glClearNamedBufferData(r.stats_ssbo.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
-    // The sample-count image is read back per pixel (heatmaps): pixels outside the SSS tiles must read 0.
-    glClearTexImage(r.counts.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
-    c.programs.tiles.use();
-    glDispatchCompute(c.groups_x, c.groups_y, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    c.programs.dispatch.use();
-    glDispatchCompute(1, 1, 1);
-    glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-}
+// tile list that the lighting pass wrote (bound once per frame, passes.hpp).
 
 void sss_adaptive_samples(const frame_context& c) {
     c.history->record_samples();
