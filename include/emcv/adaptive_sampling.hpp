@@ -15,10 +15,11 @@
 //                           robust (port::emcv_history_push_cv: a jump the control does not explain enters
 //                           with a 5-sigma weight and restarts the means).
 //            Every formula is the port's (include/emcv/port/history.h, budget.h, ema.h, cv.h), the code the
-//            GPU runs: this header only loops over pixels, in the order of shaders/adaptive/*.comp.glsl
-//            (update, samples, budget) and the burley pass's count. budget_solve reproduces
-//            shaders/adaptive/budget.comp.glsl bit for bit (the same pairwise tree, the same float
-//            operations) when compiled without FMA contraction (-ffp-contract=off, as the port asks).
+//            GPU runs: this header only loops over pixels, in the order of shaders/adaptive/samples.comp.glsl
+//            and the burley pass's count and history update. budget_solve finds the lambda that the samples
+//            pass's last workgroup solves (shaders/adaptive/budget_block.h), bit for bit (the bins added in
+//            the same order, the same float operations) when compiled without FMA contraction
+//            (-ffp-contract=off, as the port asks).
 //            The per-pixel states are the port's own types, so a history kept in a GPU storage buffer and
 //            one kept here have the same layout: port::EmcvEmcm2 for cv (the EMCM over (f, G)),
 //            port::EmcvMovingStats for spvg (moving stats of f) and cv-notex (of f - G).
@@ -273,11 +274,13 @@ inline void budget_add(budget_histogram& h, const float* sigma2, std::size_t pix
 }
 
 /// The scale lambda with sum_i clamp(lambda sigma_i, n_min, n_max) = budget (histogram pixels + zero pixels)
-/// over the histogram, computed as shaders/adaptive/budget.comp.glsl does, bit for bit (compiled with
-/// -ffp-contract=off): the bins' pixel counts and samples summed in the shader's pairwise tree (stride 128,
-/// 64, ..., 1), EMCV_BUDGET_SOLVE_STEPS bisection steps over lambda's bit pattern between
-/// port::emcv_budget_lambda_low_bits() and _high_bits(), `total < planned` moving the low end, the high end
-/// returned. Unlike the shader it leaves the histogram as it is (clear it with make_budget_histogram()).
+/// over the histogram: the smallest bit pattern of lambda strictly between port::emcv_budget_lambda_low_bits()
+/// and _high_bits() whose total, the bins' samples added in bin order (empty bins skipped: they add exactly 0),
+/// reaches the plan, else the high bound. Found here by EMCV_BUDGET_SOLVE_STEPS bisection steps (`total <
+/// planned` moves the low end, the high end is returned) and on the GPU by a 64-way search
+/// (shaders/adaptive/budget_block.h); the total is monotone in lambda, so both find the same bits (compiled
+/// with -ffp-contract=off). Unlike the shader it leaves the histogram as it is (clear it with
+/// make_budget_histogram()).
 /// Throws std::invalid_argument when the parameters are invalid (the mode need not be budget: p.budget is
 /// checked as under a budget).
 inline float budget_solve(const sampling_params& p, const budget_histogram& h) {
@@ -286,25 +289,21 @@ inline float budget_solve(const sampling_params& p, const budget_histogram& h) {
     check_sampling_params(as_budget);
     constexpr std::uint32_t bins = EMCV_BUDGET_BINS;
     float bin_sum[bins];
-    float partial[bins];
-    std::uint32_t pixels[bins];
+    std::uint32_t histogram_pixels = 0;
     for (std::uint32_t b = 0; b < bins; ++b) {
         bin_sum[b] = port::emcv_budget_bin_sum(b, h.bin_count[b], h.bin_fraction[b]);
-        pixels[b] = h.bin_count[b];
+        histogram_pixels += h.bin_count[b];
     }
-    for (std::uint32_t stride = bins / 2u; stride > 0u; stride /= 2u)
-        for (std::uint32_t b = 0; b < stride; ++b) pixels[b] += pixels[b + stride];
     const float n_min = static_cast<float>(p.n_min), n_max = static_cast<float>(p.n_max);
-    const float planned = p.budget * static_cast<float>(pixels[0] + h.zero_pixels);
+    const float planned = p.budget * static_cast<float>(histogram_pixels + h.zero_pixels);
     std::uint32_t low = port::emcv_budget_lambda_low_bits(), high = port::emcv_budget_lambda_high_bits();
     for (int step = 0; step < EMCV_BUDGET_SOLVE_STEPS; ++step) {
         const std::uint32_t middle = low + (high - low) / 2u;
         const float lambda = port::emcv_bits_float(middle);
+        float total = 0.0f;
         for (std::uint32_t b = 0; b < bins; ++b)
-            partial[b] = port::emcv_budget_bin_samples(lambda, bin_sum[b], h.bin_count[b], n_min, n_max);
-        for (std::uint32_t stride = bins / 2u; stride > 0u; stride /= 2u)
-            for (std::uint32_t b = 0; b < stride; ++b) partial[b] = partial[b] + partial[b + stride];
-        if (partial[0] < planned) low = middle;
+            if (h.bin_count[b] != 0u) total += port::emcv_budget_bin_samples(lambda, bin_sum[b], h.bin_count[b], n_min, n_max);
+        if (total < planned) low = middle;
         else high = middle;
     }
     return port::emcv_bits_float(high);

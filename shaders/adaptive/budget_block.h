@@ -15,19 +15,23 @@ layout(std430, EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_BUDGET)) buffer Budget {
 
 #if defined(EMCV_BUDGET_GROUP_THREADS)
 // The solve, run by the samples pass's last workgroup (EMCV_BUDGET_GROUP_THREADS threads, a power of two that
-// divides EMCV_BUDGET_BINS): the bisection on lambda's bit pattern of sum_i clamp(lambda sigma_i, N_MIN, N_MAX)
-// = B (histogram pixels + sub-pixel pixels), its sums in the fixed pairwise tree over the 256 bins that
-// emcv::budget_solve follows in C++ (the same bits). Each thread holds EMCV_BUDGET_BINS / threads bins and adds
-// the tree's first levels itself (bin t with t + 128, then with t + 64, ...), the rest in shared memory.
+// divides EMCV_BUDGET_BINS): the smallest bit pattern of lambda in the open interval between
+// emcv_budget_lambda_low_bits and _high_bits whose planned samples sum_i clamp(lambda sigma_i, N_MIN, N_MAX),
+// added over the bins in bin order, reach B (histogram pixels + sub-pixel pixels), the high bound when none
+// does: what emcv::budget_solve's bisection finds in C++ (the same bits). The total is monotone in lambda, so
+// instead of bisecting (one barrier-bound reduction per halving) every thread evaluates one of `threads`
+// candidates over all the bins each round, which narrows the interval 65-fold: five rounds and a last one.
 #define EMCV_BUDGET_BINS_PER_THREAD (EMCV_BUDGET_BINS / EMCV_BUDGET_GROUP_THREADS)
-shared float emcv_budget_partial[EMCV_BUDGET_GROUP_THREADS];
 shared bool emcv_budget_last_group;
 // The workgroup's own histogram: its pixels meet in shared memory, and only its non-empty bins reach the
 // frame's histogram (a tile's 64 pixels fall in a few bins: a few global atomics instead of two per pixel).
+// The last workgroup reuses it for the frame's bins (counts, and sums of sigma as float bits).
 shared uint emcv_budget_group_count[EMCV_BUDGET_BINS];
 shared uint emcv_budget_group_fraction[EMCV_BUDGET_BINS];
 shared uint emcv_budget_group_zero;
 shared uint emcv_budget_group_default;
+shared uint emcv_budget_below;  // candidates of the round whose total falls short of the plan
+shared uint emcv_budget_nonempty;  // the frame's non-empty bins, packed in bin order at the front of the arrays
 
 /// Empties the workgroup's histogram; the caller's next barrier() precedes the first emcv_budget_add.
 void emcv_budget_group_clear(uint thread) {
@@ -56,25 +60,20 @@ void emcv_budget_add(float sigma2) {
     }
 }
 
-/// The bins' sum in the tree's order: `value` holds thread t's bins t, t + threads, t + 2 threads, ...
-float emcv_budget_tree_sum(uint thread, float value[EMCV_BUDGET_BINS_PER_THREAD]) {
-    for (uint width = uint(EMCV_BUDGET_BINS_PER_THREAD); width > 1u; width /= 2u)
-        for (uint k = 0u; k < width / 2u; ++k) value[k] = value[k] + value[k + width / 2u];
-    emcv_budget_partial[thread] = value[0];
-    barrier();
-    for (uint stride = uint(EMCV_BUDGET_GROUP_THREADS) / 2u; stride > 0u; stride /= 2u) {
-        if (thread < stride) emcv_budget_partial[thread] = emcv_budget_partial[thread] + emcv_budget_partial[thread + stride];
-        barrier();
-    }
-    float total = emcv_budget_partial[0];
-    barrier();  // everyone has read the total before the next sum overwrites it
+/// The frame's planned samples at scale lambda: the non-empty bins added in bin order (the empty ones would add
+/// exactly 0).
+float emcv_budget_total(float lambda, float n_min, float n_max) {
+    EMCV_PRECISE float total = 0.0f;
+    for (uint i = 0u; i < emcv_budget_nonempty; ++i)
+        total += emcv_budget_bin_samples(lambda, uintBitsToFloat(emcv_budget_group_fraction[i]),
+                                         emcv_budget_group_count[i], n_min, n_max);
     return total;
 }
 
-/// Called by every thread of every workgroup of the samples pass once its pixels are in the histogram (uniform
-/// control flow: it has barriers). The last workgroup to arrive reads the histogram and clears it (atomic
-/// exchanges: the other workgroups' atomics are visible to atomics), solves lambda for the burley pass and
-/// resets the block for the next frame.
+/// Called by every thread of every workgroup of the samples pass once its pixels are in the workgroup's
+/// histogram (uniform control flow: it has barriers). The workgroup adds its non-empty bins to the frame's;
+/// the last workgroup to arrive reads the frame's histogram and clears it (atomic exchanges: the other
+/// workgroups' atomics are visible to atomics), solves lambda for the burley pass and resets the block.
 void emcv_budget_finish_group(uint thread, uint groups) {
     barrier();  // every pixel of the workgroup is in its histogram
     for (uint k = 0u; k < uint(EMCV_BUDGET_BINS_PER_THREAD); ++k) {
@@ -94,33 +93,54 @@ void emcv_budget_finish_group(uint thread, uint groups) {
     barrier();
     if (!emcv_budget_last_group) return;  // the same for the whole workgroup
 
-    uint count[EMCV_BUDGET_BINS_PER_THREAD];
-    float bin_sum[EMCV_BUDGET_BINS_PER_THREAD];
-    float counted[EMCV_BUDGET_BINS_PER_THREAD];
+    // The frame's bins into shared memory: count, and the bin's sum of sigma (as bits, in the fraction array);
+    // then the non-empty ones packed in bin order at the front (a frame fills a few tens of the 256).
     for (uint k = 0u; k < uint(EMCV_BUDGET_BINS_PER_THREAD); ++k) {
         uint bin = thread + k * uint(EMCV_BUDGET_GROUP_THREADS);
-        count[k] = atomicExchange(budget.bin_count[bin], 0u);
-        bin_sum[k] = emcv_budget_bin_sum(bin, count[k], atomicExchange(budget.bin_fraction[bin], 0u));
-        counted[k] = float(count[k]);
+        uint count = atomicExchange(budget.bin_count[bin], 0u);
+        uint fraction = atomicExchange(budget.bin_fraction[bin], 0u);
+        emcv_budget_group_count[bin] = count;
+        emcv_budget_group_fraction[bin] = floatBitsToUint(emcv_budget_bin_sum(bin, count, fraction));
     }
-    // The histogram's pixel count (exact in float below 2^24 pixels; the C++ adds the same integers).
-    float histogram_pixels = emcv_budget_tree_sum(thread, counted);
-    uint zero_pixels = atomicOr(budget.zero_pixels, 0u);
-    EMCV_PRECISE float planned = float(EMCV_HISTORY_SPP_BUDGET) * float(uint(histogram_pixels) + zero_pixels);
+    if (thread == 0u) emcv_budget_group_zero = atomicExchange(budget.zero_pixels, 0u);
+    barrier();
+    uint histogram_pixels = 0u;
+    if (thread == 0u) {
+        uint stored = 0u;
+        for (uint bin = 0u; bin < uint(EMCV_BUDGET_BINS); ++bin) {
+            uint count = emcv_budget_group_count[bin];
+            if (count == 0u) continue;
+            emcv_budget_group_count[stored] = count;  // stored <= bin: never overwrites a bin not yet read
+            emcv_budget_group_fraction[stored] = emcv_budget_group_fraction[bin];
+            ++stored;
+            histogram_pixels += count;
+        }
+        emcv_budget_nonempty = stored;
+        emcv_budget_group_default = histogram_pixels;  // handed to the other threads
+    }
+    barrier();
+    histogram_pixels = emcv_budget_group_default;
+    EMCV_PRECISE float planned = float(EMCV_HISTORY_SPP_BUDGET) * float(histogram_pixels + emcv_budget_group_zero);
     float n_min = float(EMCV_HISTORY_N_MIN), n_max = float(EMCV_HISTORY_N_MAX);
     uint low = emcv_budget_lambda_low_bits(), high = emcv_budget_lambda_high_bits();
-    for (int step = 0; step < EMCV_BUDGET_SOLVE_STEPS; ++step) {
-        uint middle = low + (high - low) / 2u;
-        float samples[EMCV_BUDGET_BINS_PER_THREAD];
-        for (uint k = 0u; k < uint(EMCV_BUDGET_BINS_PER_THREAD); ++k)
-            samples[k] = emcv_budget_bin_samples(emcv_bits_float(middle), bin_sum[k], count[k], n_min, n_max);
-        if (emcv_budget_tree_sum(thread, samples) < planned) low = middle; else high = middle;
+    while (high - low > 1u) {  // the same bounds in every thread: uniform
+        uint step = max((high - low) / uint(EMCV_BUDGET_GROUP_THREADS + 1), 1u);
+        if (thread == 0u) emcv_budget_below = 0u;
+        barrier();
+        uint candidate = low + step * (thread + 1u);  // increasing with the thread; never past 2^32 (see above)
+        if (candidate < high && emcv_budget_total(emcv_bits_float(candidate), n_min, n_max) < planned)
+            atomicAdd(emcv_budget_below, 1u);
+        barrier();
+        uint below = emcv_budget_below;  // the total is monotone: the first `below` candidates fall short
+        barrier();                       // everyone has read it before the next round clears it
+        uint next_high = low + step * (below + 1u);
+        if (below > 0u) low = low + step * below;
+        if (next_high < high) high = next_high;
     }
     if (thread == 0u) {
         budget.lambda = emcv_bits_float(high);
         budget.planned = planned;
         atomicExchange(budget.default_pixels, 0u);
-        atomicExchange(budget.zero_pixels, 0u);
         atomicExchange(budget.finished_groups, 0u);
     }
 }

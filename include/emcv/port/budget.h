@@ -16,9 +16,10 @@
 //            float's bits (no transcendental: the CPU and the GPU bin alike, bit for bit). Each bin keeps the
 //            count and the sum of the next 10 mantissa bits, so that its sum of sigma is known to 2^-13 of
 //            sigma (32-bit sums up to 4M pixels per bin).
-//            The solve (emcv::budget_solve in C++, shaders/adaptive/budget.comp.glsl on the GPU) bisects the
-//            bit pattern of lambda (positive floats order as their bits) and sums the bins in the same pairwise
-//            tree, so both give the same lambda.
+//            The solve (emcv::budget_solve in C++, the samples pass's last workgroup on the GPU,
+//            shaders/adaptive/budget_block.h) searches the bit pattern of lambda (positive floats order as
+//            their bits) for the smallest whose total, the bins added in bin order, reaches the plan: C++ by
+//            bisection, the GPU 64 candidates a round; the total is monotone, so both give the same lambda.
 // USAGE      uint bin = emcv_budget_bin(sigma); count[bin] += 1; fraction[bin] += emcv_budget_fraction(sigma);
 //            ... lambda = solve(...);  int n = emcv_budget_round(emcv_budget_share(lambda, sigma, 1, 64), u);
 #ifndef EMCV_PORT_BUDGET_H
