@@ -61,6 +61,7 @@ struct renderer::impl {
     std::deque<frame_times> unclaimed;  // measured frames not yet taken (take_times)
     frame_stats stats;
     frame_stats held_reference;  // the reference's statistics, shown again while it reuses its result
+    bool keeps_gbuffer = false;  // adaptive: the last frame updated the history, its G-buffer is the next's previous
 
     impl(const scene& sc, method me, render_options op)
         : s(sc), m(me), o(validated(std::move(op))), shaders(make_shader_setup(o)), programs(make_pass_programs(shaders)),
@@ -75,8 +76,11 @@ struct renderer::impl {
 
     void make_history() {
         history.reset();
-        if (is_adaptive(m))
+        keeps_gbuffer = false;  // the next frame starts fresh
+        if (is_adaptive(m)) {
             history.emplace(m, o.width, o.height, shaders.preprocess, shaders.shader_dir);
+            make_previous_gbuffer(res);
+        }
     }
 
     std::size_t slot_of(const planned_pass& p) const {
@@ -140,6 +144,12 @@ struct renderer::impl {
     }
 
     const frame_stats& render(int frame) {
+        if (history) {
+            // The last frame's G-buffer becomes the previous one (a swap, no copy), or, when it updated no
+            // history, the previous one is marked unusable so that every pixel starts fresh.
+            if (keeps_gbuffer) swap_gbuffer(res);
+            else forget_previous_gbuffer(res);
+        }
         const std::vector<planned_pass>& plan = planner.plan(frame, light_scale);
         const view_matrices& v = planner.view();
         const bool visible = planner.shows_sss();
@@ -162,7 +172,8 @@ struct renderer::impl {
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
         glBindVertexArray(0);
 
-        if (history) history->end_frame(res.gb_depth.id(), res.gb_normal.id(), res.gb_material.id(), visible);
+        if (history) history->end_frame(visible);
+        keeps_gbuffer = history && visible;
         constants.end_frame(v);
 
         stats.frame = frame;

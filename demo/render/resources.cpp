@@ -3,6 +3,7 @@
 #include "resources.hpp"
 
 #include <algorithm>
+#include <utility>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -230,6 +231,27 @@ void gpu_resources::draw_objects(bool with_albedo_maps) const {
                                                       reinterpret_cast<const void*>(d.index_offset_bytes), 1,
                                                       d.base_vertex, d.object);
     }
+}
+
+void make_previous_gbuffer(gpu_resources& r) {
+    if (r.prev_gb_material.id() != 0) return;
+    r.prev_gb_depth = make_cleared_target(GL_R32F, r.width, r.height);
+    r.prev_gb_normal = make_cleared_target(GL_RGBA16F, r.width, r.height);
+    r.prev_gb_material = make_cleared_target(GL_R8UI, r.width, r.height);  // 0 = background: every pixel fresh
+}
+
+void swap_gbuffer(gpu_resources& r) {
+    std::swap(r.gb_depth, r.prev_gb_depth);
+    std::swap(r.gb_normal, r.prev_gb_normal);
+    std::swap(r.gb_material, r.prev_gb_material);
+    // The attachments of make_frame_targets: 0 depth, 1 normal, 3 material.
+    glNamedFramebufferTexture(r.gbuffer_fbo.id(), GL_COLOR_ATTACHMENT0, r.gb_depth.id(), 0);
+    glNamedFramebufferTexture(r.gbuffer_fbo.id(), GL_COLOR_ATTACHMENT1, r.gb_normal.id(), 0);
+    glNamedFramebufferTexture(r.gbuffer_fbo.id(), GL_COLOR_ATTACHMENT3, r.gb_material.id(), 0);
+}
+
+void forget_previous_gbuffer(gpu_resources& r) {
+    glClearTexImage(r.prev_gb_material.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
 }
 
 gpu_resources make_gpu_resources(const scene& s, const method& m, int width, int height) {

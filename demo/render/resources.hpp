@@ -64,6 +64,9 @@ struct gpu_resources {
     gl::texture_2d depth_buffer, gb_depth, gb_normal, gb_albedo, gb_material, gb_motion, lit_diffuse, lit_specular,
         sss_out, sss_temp, counts, linear_out, display_out;
     gl::framebuffer gbuffer_fbo;
+    /// The previous frame's depth, normal and material (the adaptive methods' reprojection; empty otherwise):
+    /// the G-buffer ping-pongs with them (swap_gbuffer), nothing is copied.
+    gl::texture_2d prev_gb_depth, prev_gb_normal, prev_gb_material;
     gl::texture_2d shadow_maps;  ///< GL_TEXTURE_2D_ARRAY, one layer per light in shadow_lights
     std::vector<gl::framebuffer> shadow_fbos;
     std::vector<std::size_t> shadow_lights;  ///< light index per layer
@@ -78,6 +81,15 @@ struct gpu_resources {
 /// Validates the scene against the renderer's limits and makes every resource of the frame. Throws
 /// std::runtime_error naming the problem (a bad size, a texture without pixels, an incomplete framebuffer).
 gpu_resources make_gpu_resources(const scene& s, const method& m, int width, int height);
+
+/// Allocates the previous frame's G-buffer targets once (an adaptive method runs: its reprojection reads them),
+/// with material 0 everywhere, so that the next frame keeps no history. Idempotent.
+void make_previous_gbuffer(gpu_resources& r);
+/// The frame just rendered becomes the previous one: its depth, normal and material targets trade places with
+/// the previous frame's, and the G-buffer framebuffer renders into the others next (no copy).
+void swap_gbuffer(gpu_resources& r);
+/// Marks the previous frame's G-buffer unusable (material 0): the next frame keeps no history anywhere.
+void forget_previous_gbuffer(gpu_resources& r);
 
 /// Materials and, for the separable method, their kernels (built on the CPU from each SSS material's profile).
 void upload_materials(gpu_resources& r, const scene& s, const method& m);

@@ -56,6 +56,8 @@ constexpr std::size_t pixels = std::size_t(width) * height;
 constexpr GLuint frame_slot = 0, materials_slot = 2, stats_slot = 4, tiles_slot = 5;
 constexpr GLuint tex_depth = 10, tex_normal = 11, tex_albedo = 12, tex_material = 13, tex_diffuse = 14, tex_motion = 17;
 constexpr GLuint tex_sss_in = 16, img_count = 1;
+// shaders/adaptive/bindings.h: the previous frame's G-buffer, which the renderer ping-pongs with its own.
+constexpr GLuint tex_prev_depth = 26, tex_prev_normal = 27, tex_prev_material = 28;
 
 emcv::gl::preprocess_options shader_options() {
     emcv::gl::preprocess_options o;
@@ -84,7 +86,9 @@ struct harness {
     emcv::gl::texture_2d depth = make_texture(GL_R32F), normal = make_texture(GL_RGBA16F),
                          albedo = make_texture(GL_RGBA16F), material = make_texture(GL_R8UI),
                          motion = make_texture(GL_RG16F), diffuse = make_texture(GL_RGBA16F),
-                         scattered = make_texture(GL_RGBA16F), taken = make_texture(GL_R32UI);
+                         scattered = make_texture(GL_RGBA16F), taken = make_texture(GL_R32UI),
+                         prev_depth = make_texture(GL_R32F), prev_normal = make_texture(GL_RGBA16F),
+                         prev_material = make_texture(GL_R8UI);
     emcv::gl::buffer frame_ubo = emcv::gl::buffer::create(), materials = emcv::gl::buffer::create(),
                      stats = emcv::gl::buffer::create(), tiles = emcv::gl::buffer::create();
     emcv::gl::program probe = emcv::gl::program::compute(
@@ -97,6 +101,7 @@ struct harness {
 
     harness() {
         set_taken(std::vector<std::uint32_t>(pixels, 1u));
+        glClearTexImage(prev_material.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);  // no previous frame
         emcv::demo::gpu::frame_block f{};
         f.view = glm::mat4(1.0f);
         f.proj = glm::perspective(glm::radians(60.0f), float(width) / float(height), 0.1f, 100.0f);
@@ -193,6 +198,9 @@ struct harness {
         glBindTextureUnit(tex_material, material.id());
         glBindTextureUnit(tex_motion, motion.id());
         glBindTextureUnit(tex_diffuse, diffuse.id());
+        glBindTextureUnit(tex_prev_depth, prev_depth.id());
+        glBindTextureUnit(tex_prev_normal, prev_normal.id());
+        glBindTextureUnit(tex_prev_material, prev_material.id());
         h.record_samples();
         update_probe(k).use();
         h.bind_for_update();
@@ -200,7 +208,11 @@ struct harness {
         glBindImageTexture(img_count, taken.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
         glDispatchComputeIndirect(0);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
-        h.end_frame(depth.id(), normal.id(), material.id(), true);
+        h.end_frame(true);
+        // This frame's G-buffer is the next one's previous (the renderer swaps its targets; the harness copies).
+        glCopyImageSubData(depth.id(), GL_TEXTURE_2D, 0, 0, 0, 0, prev_depth.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width, height, 1);
+        glCopyImageSubData(normal.id(), GL_TEXTURE_2D, 0, 0, 0, 0, prev_normal.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width, height, 1);
+        glCopyImageSubData(material.id(), GL_TEXTURE_2D, 0, 0, 0, 0, prev_material.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width, height, 1);
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
     }
 

@@ -72,9 +72,6 @@ history::history(const method& m, int width, int height, const gl::preprocess_op
         if (layout_ == history_layout::emcm2) b_[static_cast<std::size_t>(i)] = make_cleared_target(format_b, width, height);
     }
     samples_ = make_cleared_target(GL_R32UI, width, height);
-    prev_depth_ = make_cleared_target(GL_R32F, width, height);
-    prev_normal_ = make_cleared_target(GL_RGBA16F, width, height);
-    prev_material_ = make_cleared_target(GL_R8UI, width, height);  // 0 = background: every pixel starts fresh
 }
 
 emcv::port::EmcvBudgetBlock history::read_budget() const {
@@ -90,9 +87,6 @@ void history::record_samples() {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMCV_ADAPTIVE_BUDGET, budget_.id());
     glBindTextureUnit(EMCV_ADAPTIVE_TEX_HISTORY_PREV_A, a_[prev].id());
     glBindTextureUnit(EMCV_ADAPTIVE_TEX_HISTORY_PREV_B, layout_ == history_layout::emcm2 ? b_[prev].id() : a_[prev].id());
-    glBindTextureUnit(EMCV_ADAPTIVE_TEX_PREV_DEPTH, prev_depth_.id());
-    glBindTextureUnit(EMCV_ADAPTIVE_TEX_PREV_NORMAL, prev_normal_.id());
-    glBindTextureUnit(EMCV_ADAPTIVE_TEX_PREV_MATERIAL, prev_material_.id());
     glBindImageTexture(EMCV_ADAPTIVE_IMG_HISTORY_A, a_[cur].id(), 0, GL_FALSE, 0, GL_READ_WRITE, format_a(layout_));
     if (layout_ == history_layout::emcm2)
         glBindImageTexture(EMCV_ADAPTIVE_IMG_HISTORY_B, b_[cur].id(), 0, GL_FALSE, 0, GL_READ_WRITE, format_b);
@@ -116,23 +110,8 @@ void history::use_burley() {
     bind_for_update();
 }
 
-void history::end_frame(GLuint depth, GLuint normal, GLuint material, bool updated) {
-    gl::debug_group group("adaptive-keep-gbuffer");
-    if (updated) {
-        glCopyImageSubData(depth, GL_TEXTURE_2D, 0, 0, 0, 0, prev_depth_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width_,
-                           height_, 1);
-        glCopyImageSubData(normal, GL_TEXTURE_2D, 0, 0, 0, 0, prev_normal_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width_,
-                           height_, 1);
-        glCopyImageSubData(material, GL_TEXTURE_2D, 0, 0, 0, 0, prev_material_.id(), GL_TEXTURE_2D, 0, 0, 0, 0,
-                           width_, height_, 1);
-        current_ = 1 - current_;
-    } else {
-        reset();
-    }
-}
-
-void history::reset() {
-    glClearTexImage(prev_material_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+void history::end_frame(bool updated) {
+    if (updated) current_ = 1 - current_;
 }
 
 std::vector<texel> history::read() const {

@@ -53,7 +53,9 @@ public:
     emcv::port::EmcvBudgetBlock read_budget() const;
 
     /// The adaptive-samples pass. Expects what the renderer's SSS passes expect bound (frame UBO, materials,
-    /// tile list as the GL_DISPATCH_INDIRECT_BUFFER, G-buffer and motion textures at their render slots).
+    /// tile list as the GL_DISPATCH_INDIRECT_BUFFER, G-buffer and motion textures at their render slots), and
+    /// the previous frame's depth, normal and material at EMCV_ADAPTIVE_TEX_PREV_* (the renderer's, which
+    /// ping-pong with its G-buffer).
     /// Writes N (budget mode: the variance) into the samples image; in budget mode its last workgroup also
     /// solves lambda into the budget block.
     void record_samples();
@@ -63,12 +65,10 @@ public:
     /// Binds this frame's history images, the samples image and the budget block at their adaptive slots
     /// (use_burley; tests that run the history update on given values with their own probe program).
     void bind_for_update() const;
-    /// End of every frame of the method: keeps this frame's G-buffer (depth R32F, normal RGBA16F, material
-    /// R8UI) for the next reprojection and swaps the histories. A frame without SSS pass leaves the history
-    /// unknown, so the next frame starts fresh everywhere.
-    void end_frame(GLuint depth, GLuint normal, GLuint material, bool updated);
-    /// Every pixel starts fresh on the next frame (method switch, camera cut).
-    void reset();
+    /// End of every frame of the method: after a frame that updated the history (`updated`), the next one
+    /// reprojects from it. The caller keeps the matching G-buffer (previous depth, normal, material) or, after
+    /// a frame without SSS pass, marks it unusable (material 0), so the next frame starts fresh everywhere.
+    void end_frame(bool updated);
 
     GLuint samples_texture() const noexcept { return samples_.id(); }
 
@@ -87,7 +87,7 @@ private:
     gl::buffer budget_;  // EmcvBudgetBlock: allocated in every mode (the passes declare it), used in budget mode
     std::array<gl::texture_2d, 2> a_, b_;  // ping-pong: [current_] is this frame's
     int current_ = 0;
-    gl::texture_2d samples_, prev_depth_, prev_normal_, prev_material_;
+    gl::texture_2d samples_;
 };
 
 }  // namespace emcv::demo::adaptive

@@ -4,6 +4,7 @@
 // pass listed (render/tiles.h).
 #include "passes.hpp"
 
+#include "adaptive/bindings.h"
 #include "emcv/port/bindings.h"
 #include "render/adaptive/history.hpp"
 #include "render/bindings.h"
@@ -22,6 +23,10 @@ namespace emcv::demo::passes {
 // tile list that the lighting pass wrote (bound once per frame, passes.hpp).
 
 void sss_adaptive_samples(const frame_context& c) {
+    // The previous frame's G-buffer, which the current one ping-pongs with (resources.hpp, swap_gbuffer).
+    glBindTextureUnit(EMCV_ADAPTIVE_TEX_PREV_DEPTH, c.res.prev_gb_depth.id());
+    glBindTextureUnit(EMCV_ADAPTIVE_TEX_PREV_NORMAL, c.res.prev_gb_normal.id());
+    glBindTextureUnit(EMCV_ADAPTIVE_TEX_PREV_MATERIAL, c.res.prev_gb_material.id());
     c.history->record_samples();
 }
 
