@@ -37,7 +37,7 @@ bool emcv_adaptive_reproject(ivec2 p, uint material, out vec4 a, out vec4 b) {
     vec3 world = emcv_render_world_position(p, z);
     float expected_prev_depth = (frame.prev_view_proj * vec4(world, 1.0f)).w;  // clip w = view depth
     bool same_surface = emcv_history_reusable(material, texelFetch(prev_material, q, 0).x, expected_prev_depth,
-                                              texelFetch(prev_depth, q, 0).x, texelFetch(gbuffer_normal, p, 0).xyz,
+                                              abs(texelFetch(prev_depth, q, 0).x), texelFetch(gbuffer_normal, p, 0).xyz,
                                               texelFetch(prev_normal, q, 0).xyz);
     if (!same_surface) return false;
     a = texelFetch(history_prev_a, q, 0);

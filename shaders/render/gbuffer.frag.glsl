@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
-// G-buffer pass, fragment stage: linear view depth (R32F), world normal, albedo with its texture, material
-// code (index + 1; 0 stays the background's) and motion in pixels from the previous frame.
+// G-buffer pass, fragment stage: linear view depth (R32F) signed with whether the material scatters (positive:
+// it does; negative: it does not; 0 stays the background's), world normal, albedo with its texture, material
+// code (index + 1; 0 stays the background's) and motion in pixels from the previous frame. The sign lets an SSS
+// sample test its point and read its depth with one fetch (gbuffer_read.h, emcv_render_scattering_depth).
 #version 450 core
 
 #include "render/frame.h"
@@ -23,7 +25,8 @@ layout(location = 4) out vec2 out_motion;
 void main() {
     vec3 n = normalize(v_normal);
     if (!gl_FrontFacing) n = -n;  // open meshes (planes) seen from behind
-    out_depth = v_view_depth;
+    bool scatters = int(materials[v_material].albedo.w) == EMCV_RENDER_MATERIAL_SSS;
+    out_depth = scatters ? v_view_depth : -v_view_depth;
     out_normal = vec4(n, 0.0f);
     out_albedo = vec4(materials[v_material].albedo.xyz * texture(albedo_map, v_uv).xyz, 1.0f);
     out_material = v_material + 1u;

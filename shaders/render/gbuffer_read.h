@@ -17,6 +17,13 @@ bool emcv_render_on_screen(ivec2 p) {
 }
 
 uint emcv_render_material_code(ivec2 p) { return texelFetch(gbuffer_material, p, 0).x; }
-float emcv_render_depth(ivec2 p) { return texelFetch(gbuffer_depth, p, 0).x; }
+/// Linear view depth at p (0 for the background). The G-buffer stores it signed with the scatter flag.
+float emcv_render_depth(ivec2 p) { return abs(texelFetch(gbuffer_depth, p, 0).x); }
+/// The depth at q if q is on screen and its material scatters, else 0 (what an SSS sample needs of the point it
+/// lands on, in one fetch: the G-buffer's depth is positive exactly where the material scatters).
+float emcv_render_scattering_depth(ivec2 q) {
+    if (!emcv_render_on_screen(q)) return 0.0f;
+    return max(texelFetch(gbuffer_depth, q, 0).x, 0.0f);
+}
 
 #endif  // #ifndef EMCV_RENDER_GBUFFER_READ_H

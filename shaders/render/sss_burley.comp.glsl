@@ -69,8 +69,9 @@ uint scatter(ivec2 p) {
         vec2 offset = emcv_sss_offset_pixels(r, u.y, pixels_per_mm);
         ivec2 q = ivec2(floor(vec2(p) + 0.5f + offset));
         // Off-screen and non-scattering samples get weight 0 (docs/frame.md).
-        if (!emcv_render_on_screen(q) || !emcv_render_scatters(emcv_render_material_code(q))) continue;
-        float dz_mm = (emcv_render_depth(q) - z) * mm_per_unit;
+        float zq = emcv_render_scattering_depth(q);
+        if (zq == 0.0f) continue;
+        float dz_mm = (zq - z) * mm_per_unit;
         vec3 w = emcv_sss_weight(r, emcv_sss_depth_aware_radius(r, dz_mm), d, d_sample);
         sum_w += w;
         sum_wl += w * texelFetch(lit_diffuse, q, 0).xyz;

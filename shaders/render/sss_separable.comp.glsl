@@ -45,8 +45,9 @@ void main() {
         vec4 tap = taps[base + uint(k)];
         ivec2 q = ivec2(floor(vec2(p) + 0.5f + direction * (tap.w * pixels_per_mm)));
         vec3 c = centre;
-        if (emcv_render_on_screen(q) && emcv_render_scatters(emcv_render_material_code(q))) {
-            float dz_mm = abs(emcv_render_depth(q) - z) * mm_per_unit;
+        float zq = emcv_render_scattering_depth(q);  // 0: off screen or not scattering
+        if (zq != 0.0f) {
+            float dz_mm = abs(zq - z) * mm_per_unit;
             c = mix(texelFetch(source, q, 0).xyz, centre, clamp(dz_mm / half_width_mm, 0.0f, 1.0f));
         }
         result += tap.xyz * c;
