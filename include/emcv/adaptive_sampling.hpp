@@ -130,8 +130,8 @@ inline float sigma2_of(const port::EmcvMovingStats& s, float eta) { return port:
 
 }  // namespace detail
 
-/// Pushes each pixel's frame into its history, as the renderer's adaptive-update pass does: f is the pixel's
-/// output (the mean of the taken[i] samples it took), g its in-frame control G (both as the tracked scalar,
+/// Pushes each pixel's frame into its history, as the renderer's adaptive burley pass does after sampling: f is
+/// the pixel's output (the mean of the taken[i] samples it took), g its in-frame control G (both as the tracked scalar,
 /// e.g. gamma-space luminance); the push is a batch of taken[i] (supp. Eq. 25-27), so the history estimates
 /// the variance of one sample. spvg and cv-notex push f and f - G (port::emcv_moving_stats_push_batch); cv
 /// pushes the pair (f, G) through port::emcv_history_push_cv: once the history is 1 / eta frames old, a residual

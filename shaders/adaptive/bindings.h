@@ -20,7 +20,7 @@
 // frame runs a separable pass and an adaptive one, and each adaptive pass binds it before its dispatch.
 #define EMCV_ADAPTIVE_BUDGET EMCV_RENDER_KERNELS
 
-// Images: this frame's history (written by adaptive-samples, updated in place by adaptive-update) and N
+// Images: this frame's history (written by adaptive-samples, updated in place by the adaptive burley pass) and N
 #define EMCV_ADAPTIVE_IMG_SAMPLES 2           // samples per pixel for the burley pass (R32UI)
 #define EMCV_ADAPTIVE_IMG_HISTORY_A 3
 #define EMCV_ADAPTIVE_IMG_HISTORY_B 4

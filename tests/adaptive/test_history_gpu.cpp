@@ -165,7 +165,7 @@ struct harness {
         return out;
     }
 
-    /// The samples the burley pass took per pixel (what adaptive-update pushes each value as a batch of).
+    /// The samples the burley pass took per pixel (what the history update pushes each value as a batch of).
     void set_taken(const std::vector<std::uint32_t>& n) {
         glTextureSubImage2D(taken.id(), 0, 0, 0, width, height, GL_RED_INTEGER, GL_UNSIGNED_INT, n.data());
     }

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
 // emcv::demo::adaptive::history — the GPU side of the adaptive methods spvg, cv and cv-notex: their per-pixel
-// history textures (ping-pong), last frame's G-buffer for the reprojection test, the per-pixel sample-count
-// texture the burley pass reads, and the two passes around it (shaders/adaptive):
+// history textures (ping-pong), the per-pixel sample-count texture the burley pass reads, the budget block, and
+// the method's two programs (the renderer's previous G-buffer serves the reprojection test):
 //   adaptive-samples  before sss-burley: reproject + validate last frame's history, write N (budget mode:
-//                     the per-sample variance, added to the sigma histogram)
-//   adaptive-budget   budget mode only: solve the scale of N = clamp(lambda sigma, ...) from that histogram
-//                     (include/emcv/port/budget.h); the burley pass computes N with it
-//   adaptive-update   after sss-burley: push this frame's (f, G) into the history as a batch of N
+//                     the per-sample variance, added to the sigma histogram, from which the pass's last
+//                     workgroup solves the scale of N = clamp(lambda sigma, ...): include/emcv/port/budget.h)
+//   sss-burley        the renderer's burley pass built with the method's define: N per pixel (under a budget
+//                     from sigma and lambda), then this frame's (f, G) pushed into the history as a batch of N
 // Layouts and choices: include/emcv/port/history.h and docs/renderer.md. Created only for an adaptive
 // method, so the other methods allocate nothing of this.
 #pragma once

@@ -89,7 +89,7 @@ EMCV_FN float emcv_history_variance_unit() { return 1.0e-4f; }
 /// Gamma-space luminance (Rec. 709 weights, gamma 1/2.2) of a linear colour: the scalar SPVG tracks.
 /// `precise` and written out (not dot()): every shader that tracks this value must get the same bits, and a
 /// compiler free to contract the sum into FMAs does it differently per shader (measured: 2 binary16 ulps of
-/// the stored variance apart between the update pass and a probe shader).
+/// the stored variance apart between the history update and a probe shader).
 EMCV_FN float emcv_gamma_luminance(EMCV_IN(vec3) linear_rgb) {
     EMCV_PRECISE float y = 0.2126f * linear_rgb.x + 0.7152f * linear_rgb.y + 0.0722f * linear_rgb.z;
     return pow(max(y, 0.0f), 1.0f / 2.2f);

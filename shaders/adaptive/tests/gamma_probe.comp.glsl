@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // tests/adaptive: the tracked scalar (port's emcv_gamma_luminance) of given linear colours, computed on the GPU
-// with the same function the adaptive-update pass calls, so the C++ estimators can be fed the GPU's own f and G.
+// with the same function the adaptive burley pass's history update calls, so the C++ estimators can be fed the GPU's own f and G.
 #version 450 core
 
 #include "emcv/port/bindings.h"
