@@ -194,8 +194,6 @@ const frame_stats& renderer::render(int frame) { return p_->render(frame); }
 
 std::vector<frame_times> renderer::take_times(bool wait) { return p_->take_times(wait); }
 
-timing renderer::clock() const { return p_->o.timing_mode; }
-
 void renderer::set_method(const method& m) {
     p_->m = m;
     p_->planner = frame_planner(p_->s, m, p_->o.width, p_->o.height);

@@ -48,8 +48,6 @@ public:
     /// `wait`: also wait for every rendered frame's (end of a run). The newest 1024 are kept for a caller that
     /// takes them late.
     std::vector<frame_times> take_times(bool wait);
-    /// The clock of the pass times (render_options::timing_mode).
-    timing clock() const;
 
     /// Switches the method (window keys); histories and the held reference are reset.
     void set_method(const method& m);

@@ -173,3 +173,30 @@ TEST_CASE("the renderer skips a dark light's shadow pass on the frames it is dar
     }
     CHECK(messenger.error_count() == 0);
 }
+
+TEST_CASE("the timing flag: auto picks GPU timestamps on a hardware renderer and the wall clock on a software one") {
+    CHECK(parse_timing("auto") == timing_request::automatic);
+    CHECK(parse_timing("wall") == timing_request::wall);
+    CHECK(parse_timing("gpu") == timing_request::gpu);
+    for (const char* bad : {"", "GPU", "cpu", "gpu ", "timestamps"}) {
+        INFO("'" << bad << "'");
+        CHECK_FALSE(parse_timing(bad).has_value());
+        CHECK_THROWS_AS(parse_timing_flag(bad), timing_error);
+    }
+    // GL_RENDERER strings as the drivers report them.
+    const char* software[] = {"llvmpipe (LLVM 15.0.6, 256 bits)", "softpipe", "SwiftShader Device (Subzero)"};
+    const char* hardware[] = {"NVIDIA H200/PCIe/SSE2", "AMD Radeon RX 7900 XTX (radeonsi, navi31, LLVM 15.0.7)",
+                              "Mesa Intel(R) UHD Graphics 630 (CFL GT2)"};
+    for (const char* r : software) {
+        INFO(r);
+        CHECK(resolve_timing(timing_request::automatic, r) == timing::wall);
+        CHECK(resolve_timing(timing_request::gpu, r) == timing::gpu);  // an explicit request wins
+    }
+    for (const char* r : hardware) {
+        INFO(r);
+        CHECK(resolve_timing(timing_request::automatic, r) == timing::gpu);
+        CHECK(resolve_timing(timing_request::wall, r) == timing::wall);
+    }
+    CHECK(std::string(timing_name(timing::gpu)) == "gpu");
+    CHECK(std::string(timing_name(timing::wall)) == "wall");
+}
