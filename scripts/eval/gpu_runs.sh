@@ -6,7 +6,12 @@
 # -DEMCV_GL_IMAGE_FILES=OFF is enough (no OpenImageIO on the GPU machine: emcv-demo --no-frames writes metrics only).
 #  1. the paper's teaser on light-off at 1920x1080 and 3360x1440: emcv-demo (PSNR against the converged reference,
 #     per frame) and emcv-eval three times (SSS pass ms per frame, medians over frames and runs);
-#  2. how the cost grows with resolution: emcv-eval from 128x128 to 3840x2160.
+#  2. how the cost grows with resolution: emcv-eval from 128x128 to 3840x2160;
+#  3. the SSS passes at equal samples (scripts/eval/sss_cost.py, builds of BIN_DIR/..): burley-B against spvg,
+#     cv and cv-notex under --spp-budget 8 and 16 at 1920x1080 with GPU timestamps, the same under the wall clock
+#     (what glFinish at every pass boundary adds), and quality-target mode's 30 frames after the switch; then the
+#     GPU's clocks (nvidia-smi, where present).
+# Times use emcv-eval's default clock: GPU timestamps on a hardware renderer (--timing auto).
 set -euo pipefail
 [ $# -ge 1 ] || { echo "usage: gpu_runs.sh OUT_DIR [BIN_DIR]" >&2; exit 2; }
 out=$1
@@ -28,4 +33,19 @@ for size in 128x128 256x256 640x360 1280x720 1920x1080 2560x1440 3360x1440 3840x
   "$bin/emcv-eval" --scene light-off --method burley-16,separable-17,spvg,cv,cv-notex --size "$size" \
     --frames 40 > "$out/scaling-$size.csv"
 done
+python=$(command -v /usr/bin/python3 || command -v python3 || true)
+if [ -n "$python" ]; then
+  build=$(dirname "$bin")
+  for budget in 8 16; do
+    for clock in gpu wall; do
+      "$python" scripts/eval/sss_cost.py --build "$build" --runs 3 --size 1920x1080 --frames 60 \
+        --spp-budget "$budget" --timing "$clock" > "$out/cost-budget$budget-$clock.md"
+    done
+  done
+  "$python" scripts/eval/sss_cost.py --build "$build" --runs 3 --size 1920x1080 --frames 60 --first 30 --last 59 \
+    --target-variance 0.0001 --methods spvg,cv,cv-notex,burley-8 --timing gpu > "$out/cost-quality-gpu.md"
+else
+  echo "gpu_runs.sh: no python3, the equal-samples cost tables are skipped" >&2
+fi
+if command -v nvidia-smi >/dev/null 2>&1; then nvidia-smi -q -d CLOCK,PERFORMANCE > "$out/clocks.txt" || true; fi
 echo "gpu_runs.sh: wrote $out"
