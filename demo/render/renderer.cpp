@@ -61,7 +61,8 @@ struct renderer::impl {
     std::deque<frame_times> unclaimed;  // measured frames not yet taken (take_times)
     frame_stats stats;
     frame_stats held_reference;  // the reference's statistics, shown again while it reuses its result
-    bool keeps_gbuffer = false;  // adaptive: the last frame updated the history, its G-buffer is the next's previous
+    bool keeps_gbuffer = false;     // adaptive: the last frame updated the history, its G-buffer is the next's previous
+    bool previous_gbuffer_usable = false;  // adaptive: the previous G-buffer's material marks pixels with a history
 
     impl(const scene& sc, method me, render_options op)
         : s(sc), m(me), o(validated(std::move(op))), shaders(make_shader_setup(o)), programs(make_pass_programs(shaders)),
@@ -80,6 +81,7 @@ struct renderer::impl {
         if (is_adaptive(m)) {
             history.emplace(m, o.width, o.height, shaders.preprocess, shaders.shader_dir);
             make_previous_gbuffer(res);
+            previous_gbuffer_usable = true;  // perhaps another method's: forgotten before the next frame
         }
     }
 
@@ -146,9 +148,15 @@ struct renderer::impl {
     const frame_stats& render(int frame) {
         if (history) {
             // The last frame's G-buffer becomes the previous one (a swap, no copy), or, when it updated no
-            // history, the previous one is marked unusable so that every pixel starts fresh.
-            if (keeps_gbuffer) swap_gbuffer(res);
-            else forget_previous_gbuffer(res);
+            // history, the previous one is marked unusable (once, not on every frame without SSS) so that every
+            // pixel starts fresh.
+            if (keeps_gbuffer) {
+                swap_gbuffer(res);
+                previous_gbuffer_usable = true;
+            } else if (previous_gbuffer_usable) {
+                forget_previous_gbuffer(res);
+                previous_gbuffer_usable = false;
+            }
         }
         const std::vector<planned_pass>& plan = planner.plan(frame, light_scale);
         const view_matrices& v = planner.view();

@@ -82,17 +82,13 @@ emcv::port::EmcvBudgetBlock history::read_budget() const {
 }
 
 void history::record_samples() {
-    const std::size_t cur = static_cast<std::size_t>(current_), prev = 1 - cur;
+    const std::size_t prev = 1 - static_cast<std::size_t>(current_);
     samples_program_.use();
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMCV_ADAPTIVE_BUDGET, budget_.id());
     glBindTextureUnit(EMCV_ADAPTIVE_TEX_HISTORY_PREV_A, a_[prev].id());
     glBindTextureUnit(EMCV_ADAPTIVE_TEX_HISTORY_PREV_B, layout_ == history_layout::emcm2 ? b_[prev].id() : a_[prev].id());
-    glBindImageTexture(EMCV_ADAPTIVE_IMG_HISTORY_A, a_[cur].id(), 0, GL_FALSE, 0, GL_READ_WRITE, format_a(layout_));
-    if (layout_ == history_layout::emcm2)
-        glBindImageTexture(EMCV_ADAPTIVE_IMG_HISTORY_B, b_[cur].id(), 0, GL_FALSE, 0, GL_READ_WRITE, format_b);
-    glBindImageTexture(EMCV_ADAPTIVE_IMG_SAMPLES, samples_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    bind_for_update();  // this frame's history, the samples image and the budget block, as the burley pass reads them
     glDispatchComputeIndirect(0);
-    // The burley pass reads the images; under a budget the solve reads the histogram's atomics.
+    // The burley pass reads the images, and under a budget the lambda the last workgroup stored.
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
 }
 

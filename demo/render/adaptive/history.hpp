@@ -63,7 +63,7 @@ public:
     /// pass's own outputs: this frame's history images, the samples image and the budget block.
     void use_burley();
     /// Binds this frame's history images, the samples image and the budget block at their adaptive slots
-    /// (use_burley; tests that run the history update on given values with their own probe program).
+    /// (record_samples, use_burley; tests that run the history update on given values with a probe program).
     void bind_for_update() const;
     /// End of every frame of the method: after a frame that updated the history (`updated`), the next one
     /// reprojects from it. The caller keeps the matching G-buffer (previous depth, normal, material) or, after
