@@ -64,11 +64,12 @@ void require_finite(const gl::float_image& image, const char* what, const method
                                  " image holds " + std::to_string(bad) + " NaN or infinite values");
 }
 
-/// One method being rendered: its renderer and the previous frame's display image (temporal error).
+/// One method being rendered: its renderer and the previous frame's display and shown images (temporal error).
 struct method_run {
     method m;
     renderer r;
     std::optional<gl::float_image> previous_display;
+    std::optional<gl::float_image> previous_shown;  ///< after the temporal resolve (--resolve taa)
 };
 
 }  // namespace
@@ -107,10 +108,11 @@ run_result run_headless(const scene& s, const options& o, int frames, timing clo
     std::size_t reference_index = 0;
     for (const method& m : methods_to_render(o.methods)) {
         if (m.type == method::kind::reference) reference_index = runs.size();
-        runs.push_back({m, renderer(s, m, ro), std::nullopt});
+        runs.push_back({m, renderer(s, m, ro), std::nullopt, std::nullopt});
         result.method_names.push_back(m.name());
     }
 
+    const bool resolves = ro.resolve == resolve_mode::taa;
     progress_bar progress(frames);
     for (int frame = 0; frame < frames; ++frame) {
         // The reference first: every other method of this frame is measured against it.
@@ -147,11 +149,24 @@ run_result run_headless(const scene& s, const options& o, int frames, timing clo
             if (run.previous_display && ref_previous)
                 row.temporal_error = temporal_error(view_of(display), view_of(*run.previous_display),
                                                     view_of(ref_display), view_of(*ref_previous));
+            // What the frame shows after its temporal resolve (the reference shows its raw, converged image).
+            std::optional<gl::float_image> shown;
+            if (resolves) {
+                shown = is_reference ? ref_display : run.r.shown();
+                row.psnr_resolved_db = psnr_db(view_of(*shown), view_of(ref_display));
+                row.psnr_sss_resolved_db = psnr_db(view_of(*shown), view_of(ref_display), &sss);
+                // the reference's previous shown image is its previous display image
+                const std::optional<gl::float_image>& previous_shown = is_reference ? ref_previous : run.previous_shown;
+                if (previous_shown && ref_previous)
+                    row.temporal_error_resolved = temporal_error(view_of(*shown), view_of(*previous_shown),
+                                                                 view_of(ref_display), view_of(*ref_previous));
+            }
 
             if (o.out && !o.no_frames) {
                 const fs::path dir = *o.out / run.m.name();
                 pending.push_back({dir / frame_file(frame, "png"), display});
                 if (o.exr) pending.push_back({dir / frame_file(frame, "exr"), linear});
+                if (resolves && !is_reference) pending.push_back({dir / frame_file(frame, "png", "resolved"), *shown});
                 // The heatmaps the method's row asks for: N per pixel, the control-variate coefficient.
                 if (row_of(run.m).samples_heatmap)
                     pending.push_back({dir / frame_file(frame, "png", "samples"),
@@ -160,7 +175,10 @@ run_result run_headless(const scene& s, const options& o, int frames, timing clo
                     pending.push_back({dir / frame_file(frame, "png", "alpha"),
                                        sample_heatmap(run.r.cv_alpha(), alpha_heatmap_max)});
             }
-            if (!is_reference) run.previous_display = std::move(display);
+            if (!is_reference) {
+                run.previous_display = std::move(display);
+                run.previous_shown = std::move(shown);
+            }
         }
         if (o.out) {
             // Folders appear with the first frame that is complete: a run that fails earlier leaves nothing.
@@ -181,7 +199,8 @@ run_result run_headless(const scene& s, const options& o, int frames, timing clo
 
     if (o.out) {
         write_file_atomically(*o.out / "metrics.csv", metrics_csv(result.rows));
-        write_file_atomically(*o.out / "metrics.json", metrics_json(result.rows, sampling_mode_of(o.defines).text(), timing_name(clock)));
+        write_file_atomically(*o.out / "metrics.json", metrics_json(result.rows, sampling_mode_of(o.defines).text(), timing_name(clock),
+                                                                          resolve_name(ro.resolve)));
     }
     return result;
 }

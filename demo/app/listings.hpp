@@ -20,8 +20,8 @@ bool list_scenes(std::ostream& out);
 void list_methods(std::ostream& out);
 
 /// For each method: "method M:" then one line per run of frames with the same pass list,
-/// "  frames A-B: pass, pass, ...".
+/// "  frames A-B: pass, pass, ...", with the temporal resolve as `resolve` asks.
 void print_passes(std::ostream& out, const scene& s, const std::vector<method>& methods, int frames, int width,
-                  int height);
+                  int height, resolve_mode resolve);
 
 }  // namespace emcv::demo::app

@@ -71,7 +71,7 @@ int main(int argc, char** argv) {
     }
     const int frames = o.frames.value_or(std::max(1, s.frames));
     if (o.print_passes) {
-        print_passes(std::cout, s, o.methods, frames, o.width, o.height);
+        print_passes(std::cout, s, o.methods, frames, o.width, o.height, o.resolve);
         return 0;
     }
 

@@ -45,14 +45,17 @@ std::string metrics_csv(const std::vector<metrics_row>& rows) {
         out << r.frame << ',' << r.method << ',' << number_text(r.sss_ms) << ',' << number_text(r.frame_ms) << ','
             << number_text(r.mean_spp) << ',' << r.max_spp << ',' << optional_text(r.psnr_db) << ','
             << optional_text(r.psnr_sss_db) << ',' << number_text(r.rel_mse) << ','
-            << optional_text(r.temporal_error) << '\n';
+            << optional_text(r.temporal_error) << ',' << optional_text(r.psnr_resolved_db) << ','
+            << optional_text(r.psnr_sss_resolved_db) << ',' << optional_text(r.temporal_error_resolved) << '\n';
     return out.str();
 }
 
-std::string metrics_json(const std::vector<metrics_row>& rows, const std::string& sampling, const std::string& timing) {
+std::string metrics_json(const std::vector<metrics_row>& rows, const std::string& sampling, const std::string& timing,
+                         const std::string& resolve) {
     nlohmann::json j;
     if (!sampling.empty()) j["sampling"] = sampling;
     if (!timing.empty()) j["timing"] = timing;
+    if (!resolve.empty()) j["resolve"] = resolve;
     j["columns"] = metrics_columns;
     j["rows"] = nlohmann::json::array();
     for (const metrics_row& r : rows) {
@@ -65,7 +68,10 @@ std::string metrics_json(const std::vector<metrics_row>& rows, const std::string
                              {"psnr_db", json_number(r.psnr_db)},
                              {"psnr_sss_db", json_number(r.psnr_sss_db)},
                              {"rel_mse", json_number(r.rel_mse)},
-                             {"temporal_error", json_number(r.temporal_error)}});
+                             {"temporal_error", json_number(r.temporal_error)},
+                             {"psnr_resolved_db", json_number(r.psnr_resolved_db)},
+                             {"psnr_sss_resolved_db", json_number(r.psnr_sss_resolved_db)},
+                             {"temporal_error_resolved", json_number(r.temporal_error_resolved)}});
         nlohmann::json passes = nlohmann::json::array();
         for (const auto& [name, ms] : r.passes) passes.push_back({{"name", name}, {"ms", json_number(ms)}});
         j["rows"].back()["passes"] = std::move(passes);

@@ -24,14 +24,19 @@ struct metrics_row {
     std::optional<double> psnr_sss_db;     ///< empty when no SSS pixel is visible
     double rel_mse = 0.0;
     std::optional<double> temporal_error;  ///< empty on the first frame (no previous frame)
+    /// The same three of the image the frame shows after its temporal resolve (--resolve taa; the reference
+    /// shows its raw image): empty under --resolve none.
+    std::optional<double> psnr_resolved_db;
+    std::optional<double> psnr_sss_resolved_db;
+    std::optional<double> temporal_error_resolved;
     /// Each recorded pass's name and time in ms, in recording order (metrics.json only; sss_ms and frame_ms
     /// are sums of these).
     std::vector<std::pair<std::string, double>> passes;
 };
 
-inline constexpr std::array<const char*, 10> metrics_columns = {
+inline constexpr std::array<const char*, 13> metrics_columns = {
     "frame", "method", "sss_ms", "frame_ms", "mean_spp", "max_spp", "psnr_db", "psnr_sss_db", "rel_mse",
-    "temporal_error"};
+    "temporal_error", "psnr_resolved_db", "psnr_sss_resolved_db", "temporal_error_resolved"};
 
 /// Writing an output failed; what() names the file.
 class output_error : public std::runtime_error {
@@ -45,9 +50,9 @@ std::string metrics_csv(const std::vector<metrics_row>& rows);
 /// JSON text: {"columns": [...], "rows": [{column: value, ..., "passes": [{"name", "ms"}, ...]}, ...]},
 /// "sampling" (the adaptive methods' mode, e.g. "budget 8 spp" or "target variance 0.0001") and "timing" (the
 /// clock of the times: "gpu" or "wall") when given. JSON has no infinity: +inf and undefined values are null
-/// (the reference's PSNR against itself; see docs/demo.md).
+/// (the reference's PSNR against itself; see docs/demo.md). "resolve" ("taa" or "none") when given.
 std::string metrics_json(const std::vector<metrics_row>& rows, const std::string& sampling = {},
-                         const std::string& timing = {});
+                         const std::string& timing = {}, const std::string& resolve = {});
 
 /// Writes `text` to `path` through a temporary sibling and a rename. Throws output_error.
 void write_file_atomically(const std::filesystem::path& path, const std::string& text);

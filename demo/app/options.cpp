@@ -76,7 +76,7 @@ std::string usage_text() {
            "  --exr               also write linear HDR frames as EXR\n"
            "  --no-frames         with --out: write metrics.csv/json only, no frames (large benchmark runs)\n"
            "  --approximate-cdf   burley-N draws radii with SPVG's inverse-CDF fit instead of the exact inverse\n"
-           + sampling_flags_help() + timing_flag_help() +
+           + sampling_flags_help() + timing_flag_help() + resolve_flag_help() +
            "  --define NAME=VALUE set a tunable of the port headers for every shader (repeatable; names and\n"
            "                      ranges: docs/renderer.md, Tunables)\n"
            "  --window            show the renderer in a window (keys: see docs/demo.md); --frames ends it\n"
@@ -126,6 +126,12 @@ options parse_options(const std::vector<std::string>& args) {
             try {
                 o.timing = parse_timing_flag(next_value());
             } catch (const timing_error& e) {
+                throw usage_error(e.what());
+            }
+        } else if (flag == "--resolve") {
+            try {
+                o.resolve = parse_resolve_flag(next_value());
+            } catch (const resolve_error& e) {
                 throw usage_error(e.what());
             }
         } else if (flag == "--scene") {

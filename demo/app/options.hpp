@@ -33,6 +33,7 @@ struct options {
     bool window = false;                       ///< --window: interactive GLFW window
     bool approximate_cdf = false;              ///< --approximate-cdf: SPVG's inverse-CDF fit for burley-N
     timing_request timing = timing_request::automatic;  ///< --timing auto|wall|gpu: the clock of pass times
+    resolve_mode resolve = resolve_mode::taa;  ///< --resolve none|taa: the temporal resolve after the composite
     /// --define NAME=VALUE (repeatable): port tunables, validated (render/tunables.hpp), later ones win.
     std::vector<std::pair<std::string, std::string>> defines;
     bool list_methods = false;                 ///< --list-methods: the method table, one name per line

@@ -7,7 +7,7 @@
 
 namespace emcv::demo::app {
 
-/// `Options` is a parsed command line with width, height, seed, approximate_cdf and defines.
+/// `Options` is a parsed command line with width, height, seed, approximate_cdf, defines and resolve.
 template <class Options>
 render_options make_render_options(const Options& o, timing clock) {
     render_options ro;
@@ -17,6 +17,7 @@ render_options make_render_options(const Options& o, timing clock) {
     ro.approximate_inverse_cdf = o.approximate_cdf;
     ro.defines = o.defines;
     ro.timing_mode = clock;
+    ro.resolve = o.resolve;
     return ro;
 }
 

@@ -57,7 +57,7 @@ std::vector<method_summary> summarize(const std::vector<metrics_row>& rows, cons
         bool late_frames = false;
         for (const metrics_row& r : rows) late_frames = late_frames || (r.method == name && r.frame >= timing_from_frame);
         std::vector<double> sss_ms;
-        std::vector<std::optional<double>> psnr, psnr_sss;
+        std::vector<std::optional<double>> psnr, psnr_sss, psnr_resolved;
         double frame_ms = 0.0, spp = 0.0;
         for (const metrics_row& r : rows) {
             if (r.method != name) continue;
@@ -71,6 +71,7 @@ std::vector<method_summary> summarize(const std::vector<metrics_row>& rows, cons
             s.max_spp = std::max(s.max_spp, r.max_spp);
             psnr.push_back(r.psnr_db);
             psnr_sss.push_back(r.psnr_sss_db);
+            psnr_resolved.push_back(r.psnr_resolved_db);
         }
         if (s.frames > 0) {
             double sum = 0.0;
@@ -82,6 +83,7 @@ std::vector<method_summary> summarize(const std::vector<metrics_row>& rows, cons
         }
         s.psnr_db = mean_psnr(psnr);
         s.psnr_sss_db = mean_psnr(psnr_sss);
+        s.psnr_resolved_db = mean_psnr(psnr_resolved);
         out.push_back(s);
     }
     return out;
@@ -92,7 +94,7 @@ std::optional<std::string> compare_after_change(const std::vector<metrics_row>& 
     struct window_means {
         int frames = 0;
         double spp = 0.0, sss_ms = 0.0;
-        std::vector<std::optional<double>> psnr;
+        std::vector<std::optional<double>> psnr, psnr_resolved;
     };
     const int end = window > 0 ? first_change + window : std::numeric_limits<int>::max();
     auto means_of = [&](const std::string& method) {
@@ -103,6 +105,7 @@ std::optional<std::string> compare_after_change(const std::vector<metrics_row>& 
             m.spp += r.mean_spp;
             m.sss_ms += r.sss_ms;
             m.psnr.push_back(r.psnr_db);
+            m.psnr_resolved.push_back(r.psnr_resolved_db);
         }
         return m;
     };
@@ -118,13 +121,14 @@ std::optional<std::string> compare_after_change(const std::vector<metrics_row>& 
         std::snprintf(t, sizeof t, "%.3fx", a / b);
         return t;
     };
-    const std::optional<double> db_name = mean_psnr(cand.psnr), db_baseline = mean_psnr(base.psnr);
-    std::string gap = "-";
-    if (db_name && db_baseline && std::isfinite(*db_name) && std::isfinite(*db_baseline)) {
+    auto gap_of = [](const std::optional<double>& a, const std::optional<double>& b) -> std::string {
+        if (!(a && b && std::isfinite(*a) && std::isfinite(*b))) return "-";
         char t[32];
-        std::snprintf(t, sizeof t, "%+.2f dB", *db_name - *db_baseline);
-        gap = t;
-    }
+        std::snprintf(t, sizeof t, "%+.2f dB", *a - *b);
+        return t;
+    };
+    const std::optional<double> db_name = mean_psnr(cand.psnr), db_baseline = mean_psnr(base.psnr);
+    const std::string gap = gap_of(db_name, db_baseline);
     char span[96];
     if (window > 0)
         std::snprintf(span, sizeof span, "frames %d-%d (from the first light change at frame %d)", first_change, last,
@@ -137,20 +141,37 @@ std::optional<std::string> compare_after_change(const std::vector<metrics_row>& 
                   ratio(cand.spp / cand.frames, base.spp / base.frames).c_str(),
                   ratio(cand.sss_ms / cand.frames, base.sss_ms / base.frames).c_str(), gap.c_str(), name.c_str(),
                   psnr_text(db_name).c_str(), baseline.c_str(), psnr_text(db_baseline).c_str());
-    return std::string(line);
+    std::string out(line);
+    const std::optional<double> resolved_name = mean_psnr(cand.psnr_resolved),
+                                resolved_baseline = mean_psnr(base.psnr_resolved);
+    if (resolved_name && resolved_baseline) {
+        std::snprintf(line, sizeof line, ", resolved %s (%s %s, %s %s)", gap_of(resolved_name, resolved_baseline).c_str(),
+                      name.c_str(), psnr_text(resolved_name).c_str(), baseline.c_str(),
+                      psnr_text(resolved_baseline).c_str());
+        out += line;
+    }
+    return out;
 }
 
 std::string format_summary(const std::vector<method_summary>& summaries, const std::vector<std::string>& notes) {
     std::ostringstream out;
     char line[256];
-    std::snprintf(line, sizeof line, "%-14s %6s %9s %9s %9s %9s %8s %9s %10s\n", "method", "frames", "sss_ms",
+    // The resolved column only when the run resolved (--resolve taa).
+    bool resolved = false;
+    for (const method_summary& s : summaries) resolved = resolved || s.psnr_resolved_db.has_value();
+    std::snprintf(line, sizeof line, "%-14s %6s %9s %9s %9s %9s %8s %9s %10s", "method", "frames", "sss_ms",
                   "sss_p95", "frame_ms", "mean_spp", "max_spp", "psnr_db", "psnr_sss");
-    out << line;
+    out << line << (resolved ? "  psnr_resolved\n" : "\n");
     for (const method_summary& s : summaries) {
-        std::snprintf(line, sizeof line, "%-14s %6d %9.3f %9.3f %9.3f %9.1f %8d %9s %10s\n", s.method.c_str(),
+        std::snprintf(line, sizeof line, "%-14s %6d %9.3f %9.3f %9.3f %9.1f %8d %9s %10s", s.method.c_str(),
                       s.frames, s.sss_ms_mean, s.sss_ms_p95, s.frame_ms_mean, s.mean_spp, s.max_spp,
                       psnr_text(s.psnr_db).c_str(), psnr_text(s.psnr_sss_db).c_str());
         out << line;
+        if (resolved) {
+            std::snprintf(line, sizeof line, " %14s", psnr_text(s.psnr_resolved_db).c_str());
+            out << line;
+        }
+        out << '\n';
     }
     for (const std::string& note : notes) out << note << '\n';
     return out.str();

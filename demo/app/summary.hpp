@@ -23,6 +23,8 @@ struct method_summary {
     /// is identical to the reference, empty when no frame defines it.
     std::optional<double> psnr_db;
     std::optional<double> psnr_sss_db;
+    /// The same of the shown image after the temporal resolve (psnr_resolved_db); empty under --resolve none.
+    std::optional<double> psnr_resolved_db;
 };
 
 /// p-th percentile (p in [0, 100]) by linear interpolation between order statistics; 0 for no values.
@@ -43,8 +45,8 @@ inline constexpr int switch_window_frames = 30;
 /// `window` frames from `first_change` (the first frame at which a light's intensity changes), cut at the last
 /// frame rendered; window 0: every frame from `first_change` on.
 /// Sample ratio (mean over frames of mean_spp), SSS-pass-time ratio (mean sss_ms) and PSNR gap (mean over
-/// frames of psnr_db, name minus baseline). Empty when either did not run, or no frame of either lies in the
-/// window.
+/// frames of psnr_db, name minus baseline), then, when the rows have them, the same gap of the resolved images
+/// (psnr_resolved_db). Empty when either did not run, or no frame of either lies in the window.
 std::optional<std::string> compare_after_change(const std::vector<metrics_row>& rows, int first_change,
                                                 const std::string& name, const std::string& baseline,
                                                 int window = switch_window_frames);

@@ -124,7 +124,10 @@ int run_window(gl::context& ctx, const scene& s, const options& o, std::optional
     const render_options ro = make_render_options(o, o.timing == timing_request::wall ? timing::wall : timing::gpu);  // gpu never stalls: the title shows the newest measured frame
     std::size_t method_index = 0;
     renderer r(s, o.methods[method_index], ro);
-    const blit_source display = make_blit_source(r.display_texture(), o.width, o.height);
+    // What a frame shows is the composite's image or, after the temporal resolve, the resolved one: the blit
+    // source follows renderer::display_texture when it changes (the first resolved frame, a method switch).
+    GLuint display_id = r.display_texture();
+    blit_source display = make_blit_source(display_id, o.width, o.height);
     const blit_source heat = make_blit_source(0, o.width, o.height);
 
     const std::vector<int> script = scripted_keys();
@@ -167,6 +170,10 @@ int run_window(gl::context& ctx, const scene& s, const options& o, std::optional
                                 colours.pixels.data());
             blit_to_window(heat, o.width, o.height);
         } else {
+            if (r.display_texture() != display_id) {
+                display_id = r.display_texture();
+                display = make_blit_source(display_id, o.width, o.height);
+            }
             blit_to_window(display, o.width, o.height);
         }
         glfwSetWindowTitle(window, title(s, r, frame, stats, state.heatmap).c_str());

@@ -16,6 +16,7 @@ std::string_view pass_base_name(pass_id id) {
         case pass_id::sss_separable_h: return "sss-separable-h";
         case pass_id::sss_separable_v: return "sss-separable-v";
         case pass_id::composite: return "composite";
+        case pass_id::resolve: return "resolve";
     }
     return "unknown";
 }
@@ -38,8 +39,8 @@ std::vector<std::size_t> shadow_casters(const scene& s) {
     return out;
 }
 
-frame_planner::frame_planner(const scene& s, const method& m, int width, int height)
-    : s_(&s), m_(m), width_(width), height_(height), casters_(shadow_casters(s)) {
+frame_planner::frame_planner(const scene& s, const method& m, int width, int height, resolve_mode resolve)
+    : s_(&s), m_(m), width_(width), height_(height), resolve_(resolve), casters_(shadow_casters(s)) {
     for (const object& o : s.objects)
         if (s.materials.at(static_cast<std::size_t>(o.material)).scatters()) sss_bounds_.push_back(object_bounds(s, o));
     passes_.reserve(casters_.size() + 8);
@@ -95,11 +96,14 @@ const std::vector<planned_pass>& frame_planner::plan(int frame, const std::vecto
         }
     }
     passes_.push_back({pass_id::composite, 0, 0});
+    // The reference is the converged image an engine's resolve would converge to: it is compared raw.
+    if (resolve_ == resolve_mode::taa && m_.type != method::kind::reference) passes_.push_back({pass_id::resolve, 0, 0});
     return passes_;
 }
 
-std::vector<std::string> pass_list(const scene& s, const method& m, int frame, int width, int height) {
-    frame_planner planner(s, m, width, height);
+std::vector<std::string> pass_list(const scene& s, const method& m, int frame, int width, int height,
+                                   resolve_mode resolve) {
+    frame_planner planner(s, m, width, height, resolve);
     std::vector<std::string> names;
     for (const planned_pass& p : planner.plan(frame)) names.push_back(pass_name(s, p));
     return names;

@@ -9,6 +9,8 @@
 //                    their indirect dispatch arguments (render/tiles.h): no SSS pass runs over the full screen
 //   the method's SSS passes (method.hpp, sss_passes), over the SSS tiles only (indirect dispatch)
 //   composite        post-scatter albedo * scattered (or unscattered) diffuse + specular, tonemap, sRGB
+//   resolve          --resolve taa: the temporal resolve of the composite's image (every method but the
+//                    reference, whose image is converged); not recorded under --resolve none
 // The SSS passes (and the tile list) are not recorded for a method that does not scatter, for a scene with no SSS
 // material, when every SSS object lies outside the view frustum, or when the reference's inputs are those of
 // the result it already holds (it is shown again).
@@ -20,6 +22,7 @@
 #include <vector>
 
 #include "method.hpp"
+#include "resolve.hpp"
 #include "scene/scene.hpp"
 #include "view.hpp"
 
@@ -35,8 +38,9 @@ enum class pass_id {
     sss_separable_h,
     sss_separable_v,
     composite,
+    resolve,  ///< the temporal resolve (resolve.hpp), after the composite
 };
-inline constexpr std::size_t pass_id_count = 8;
+inline constexpr std::size_t pass_id_count = 9;
 
 /// "gbuffer", "shadow", "lighting", "sss-adaptive-samples", "sss-burley", ...
 std::string_view pass_base_name(pass_id id);
@@ -62,7 +66,8 @@ std::vector<std::size_t> shadow_casters(const scene& s);
 class frame_planner {
 public:
     /// The passes do not depend on the sampling mode: a budget is solved inside the adaptive samples pass.
-    frame_planner(const scene& s, const method& m, int width, int height);
+    /// `resolve`: whether a frame ends with the temporal resolve (not for the reference).
+    frame_planner(const scene& s, const method& m, int width, int height, resolve_mode resolve);
 
     /// The passes of `frame`; `light_scale` multiplies each light's intensity (the window's toggles), empty
     /// for 1 everywhere.
@@ -82,6 +87,7 @@ private:
     const scene* s_;
     method m_;
     int width_, height_;
+    resolve_mode resolve_;
     std::vector<bounding_sphere> sss_bounds_;
     std::vector<std::size_t> casters_;
     std::vector<planned_pass> passes_;
@@ -92,6 +98,7 @@ private:
 
 /// The names of frame_planner's list for one frame, planned from scratch (no held reference result): what
 /// `--print-passes` prints for frame 0 and the tests compare with.
-std::vector<std::string> pass_list(const scene& s, const method& m, int frame, int width, int height);
+std::vector<std::string> pass_list(const scene& s, const method& m, int frame, int width, int height,
+                                   resolve_mode resolve);
 
 }  // namespace emcv::demo

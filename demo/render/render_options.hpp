@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "resolve.hpp"
 #include "timing.hpp"
 
 namespace emcv::demo {
@@ -24,6 +25,9 @@ struct render_options {
     tonemap_operator tonemap = tonemap_operator::aces;
     float exposure = 1.0f;  ///< linear radiance is multiplied by this before the tonemap
     timing timing_mode = timing::wall;  ///< the clock of frame_stats' pass times (timing.hpp)
+    /// The temporal resolve after the composite (resolve.hpp). The renderer's default is the raw frame; the
+    /// command lines default to taa, what an engine shows.
+    resolve_mode resolve = resolve_mode::none;
     /// Tunables of the port headers (`--define NAME=VALUE`, validated by demo/render/tunables.hpp), passed
     /// to every shader as `#define NAME VALUE`.
     std::vector<std::pair<std::string, std::string>> defines;

@@ -63,12 +63,14 @@ struct renderer::impl {
     frame_stats held_reference;  // the reference's statistics, shown again while it reuses its result
     bool keeps_gbuffer = false;     // adaptive: the last frame updated the history, its G-buffer is the next's previous
     bool previous_gbuffer_usable = false;  // adaptive: the previous G-buffer's material marks pixels with a history
+    bool resolved = false;  // the last frame ended with the resolve pass: resolved_display holds what is shown
 
     impl(const scene& sc, method me, render_options op)
-        : s(sc), m(me), o(validated(std::move(op))), shaders(make_shader_setup(o)), programs(make_pass_programs(shaders)),
-          res(make_gpu_resources(s, m, o.width, o.height)), planner(s, m, o.width, o.height), constants(s),
+        : s(sc), m(me), o(validated(std::move(op))), shaders(make_shader_setup(o)), programs(make_pass_programs(shaders, o.resolve)),
+          res(make_gpu_resources(s, m, o.width, o.height)), planner(s, m, o.width, o.height, o.resolve), constants(s),
           light_scale(s.lights.size(), 1.0f), stamps(make_timestamps(o.timing_mode)) {
         make_history();
+        if (o.resolve == resolve_mode::taa) make_resolve_targets(res);
         for (std::size_t id = 0; id < pass_id_count; ++id)
             slot_names.emplace_back(pass_base_name(static_cast<pass_id>(id)));
         for (std::size_t layer = 0; layer < res.shadow_lights.size(); ++layer)
@@ -169,18 +171,21 @@ struct renderer::impl {
         // A stamp at every pass boundary (gl/timestamps.hpp): the wall clock finishes the GPU's work there, GPU
         // timestamps never wait.
         stamps.begin_frame(frame);
+        resolved = false;
         for (const planned_pass& p : plan) {
             const std::size_t slot = slot_of(p);
             glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, slot_names[slot].c_str());
             passes::record(p, context);
             glPopDebugGroup();
             stamps.end_pass(slot);
+            resolved = resolved || p.id == pass_id::resolve;
         }
         stamps.end_frame();
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
         glBindVertexArray(0);
 
         if (history) history->end_frame(visible);
+        if (resolved) swap_resolve_history(res);
         keeps_gbuffer = history && visible;
         constants.end_frame(v);
 
@@ -204,9 +209,10 @@ std::vector<frame_times> renderer::take_times(bool wait) { return p_->take_times
 
 void renderer::set_method(const method& m) {
     p_->m = m;
-    p_->planner = frame_planner(p_->s, m, p_->o.width, p_->o.height);
+    p_->planner = frame_planner(p_->s, m, p_->o.width, p_->o.height, p_->o.resolve);
     upload_materials(p_->res, p_->s, m);  // separable kernels follow the tap count
     p_->make_history();
+    if (p_->o.resolve == resolve_mode::taa) forget_resolve_history(p_->res);  // another method's image
 }
 
 const method& renderer::current_method() const { return p_->m; }
@@ -277,7 +283,12 @@ gl::float_image renderer::sample_counts() const {
     return img;
 }
 
-GLuint renderer::display_texture() const { return p_->res.display_out.id(); }
+GLuint renderer::display_texture() const {
+    return p_->resolved ? p_->res.resolved_display.id() : p_->res.display_out.id();
+}
+gl::float_image renderer::shown() const {
+    return gl::read_texture_rgba32f(display_texture(), width(), height());
+}
 gl::float_image renderer::cv_alpha() const {
     if (p_->history) return p_->history->alpha();
     return single_channel(width(), height());

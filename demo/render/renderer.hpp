@@ -75,7 +75,10 @@ public:
     gl::float_image cv_alpha() const;
     /// The adaptive methods' history (spvg, cv, cv-notex; nullptr otherwise): read back, poisoned by tests.
     adaptive::history* adaptive_history();
-    /// The display texture (RGBA8 sRGB-encoded values, width x height), for the window to blit.
+    /// What the last frame shows: its temporal resolve when the frame ran one (render_options::resolve taa,
+    /// every method but the reference), else display(). Same encoding as display().
+    gl::float_image shown() const;
+    /// The texture of shown() (RGBA8 sRGB-encoded values, width x height), for the window to blit.
     GLuint display_texture() const;
 
     int width() const;

@@ -206,7 +206,7 @@ shader_setup make_shader_setup(const render_options& o) {
     return out;
 }
 
-pass_programs make_pass_programs(const shader_setup& shaders) {
+pass_programs make_pass_programs(const shader_setup& shaders, resolve_mode resolve) {
     const gl::preprocess_options& pre = shaders.preprocess;
     const fs::path dir = shaders.shader_dir / "render";
     pass_programs p;
@@ -216,6 +216,7 @@ pass_programs make_pass_programs(const shader_setup& shaders) {
     p.burley = gl::program::compute(dir / "sss_burley.comp.glsl", pre);
     p.separable = gl::program::compute(dir / "sss_separable.comp.glsl", pre);
     p.composite = gl::program::compute(dir / "composite.comp.glsl", pre);
+    if (resolve == resolve_mode::taa) p.resolve = gl::program::compute(dir / "resolve.comp.glsl", pre);
     return p;
 }
 
@@ -238,6 +239,18 @@ void make_previous_gbuffer(gpu_resources& r) {
     r.prev_gb_depth = make_cleared_target(GL_R32F, r.width, r.height);
     r.prev_gb_normal = make_cleared_target(GL_RGBA16F, r.width, r.height);
     r.prev_gb_material = make_cleared_target(GL_R8UI, r.width, r.height);  // 0 = background: every pixel fresh
+}
+
+void make_resolve_targets(gpu_resources& r) {
+    r.resolve_history = make_cleared_target(GL_RGBA32F, r.width, r.height);
+    r.resolve_history_previous = make_cleared_target(GL_RGBA32F, r.width, r.height);  // depth 0: no history
+    r.resolved_display = make_target(GL_RGBA8, r.width, r.height);
+}
+
+void swap_resolve_history(gpu_resources& r) { std::swap(r.resolve_history, r.resolve_history_previous); }
+
+void forget_resolve_history(gpu_resources& r) {
+    glClearTexImage(r.resolve_history_previous.id(), 0, GL_RED, GL_FLOAT, nullptr);
 }
 
 void swap_gbuffer(gpu_resources& r) {

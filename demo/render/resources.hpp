@@ -27,6 +27,7 @@ inline constexpr int shadow_resolution = 1024;
 /// The GLSL programs of the passes (the adaptive passes' own live in adaptive::history).
 struct pass_programs {
     gl::program gbuffer, shadow, lighting, burley, separable, composite;
+    gl::program resolve;  ///< --resolve taa only
 };
 
 /// The shader options every pass is built with: include roots (render_options, else $EMCV_SHADER_DIR /
@@ -36,7 +37,7 @@ struct shader_setup {
     std::filesystem::path shader_dir;
 };
 shader_setup make_shader_setup(const render_options& o);
-pass_programs make_pass_programs(const shader_setup& shaders);
+pass_programs make_pass_programs(const shader_setup& shaders, resolve_mode resolve);
 
 struct draw_call {
     GLsizei index_count = 0;
@@ -67,6 +68,11 @@ struct gpu_resources {
     /// The previous frame's depth, normal and material (the adaptive methods' reprojection; empty otherwise):
     /// the G-buffer ping-pongs with them (swap_gbuffer), nothing is copied.
     gl::texture_2d prev_gb_depth, prev_gb_normal, prev_gb_material;
+    /// The temporal resolve's (--resolve taa; empty otherwise): this frame's history written, the previous
+    /// frame's read (RGBA32F: resolved display values in YCoCg and the view depth, 0 = no history; binary16
+    /// would do on hardware that rounds, but llvmpipe's binary16 store truncates, and the history, stored 20 times
+    /// over, walked a still pixel 2 steps off), and the resolved display image (RGBA8).
+    gl::texture_2d resolve_history, resolve_history_previous, resolved_display;
     gl::texture_2d shadow_maps;  ///< GL_TEXTURE_2D_ARRAY, one layer per light in shadow_lights
     std::vector<gl::framebuffer> shadow_fbos;
     std::vector<std::size_t> shadow_lights;  ///< light index per layer
@@ -90,6 +96,13 @@ void make_previous_gbuffer(gpu_resources& r);
 void swap_gbuffer(gpu_resources& r);
 /// Marks the previous frame's G-buffer unusable (material 0): the next frame keeps no history anywhere.
 void forget_previous_gbuffer(gpu_resources& r);
+
+/// Allocates the temporal resolve's targets (--resolve taa), its history empty.
+void make_resolve_targets(gpu_resources& r);
+/// The resolve history just written becomes the previous one (no copy).
+void swap_resolve_history(gpu_resources& r);
+/// Empties the previous resolve history (view depth 0 everywhere): the next resolve starts from the raw frame.
+void forget_resolve_history(gpu_resources& r);
 
 /// Materials and, for the separable method, their kernels (built on the CPU from each SSS material's profile).
 void upload_materials(gpu_resources& r, const scene& s, const method& m);

@@ -8,6 +8,7 @@
 #include <cstdlib>
 
 #include <emcv/port/history.h>
+#include <emcv/port/resolve.h>
 
 namespace emcv::demo {
 
@@ -27,6 +28,12 @@ const std::vector<tunable>& tunables() {
          double(EMCV_HISTORY_MAX_COUNT)},
         {"EMCV_HISTORY_FOOTPRINT_RADIUS_PER_D", t::real, 0.0, 100.0, true, "kernel radius per shape distance",
          EMCV_HISTORY_FOOTPRINT_RADIUS_PER_D},
+        {"EMCV_RESOLVE_BLEND", t::real, 0.0, 1.0, true, "temporal resolve: weight of the current frame",
+         EMCV_RESOLVE_BLEND},
+        {"EMCV_RESOLVE_CLIP_SIGMA", t::real, 0.0, 4.0, true, "temporal resolve: clip box half-width in std devs",
+         EMCV_RESOLVE_CLIP_SIGMA},
+        {"EMCV_RESOLVE_DEPTH_TOLERANCE", t::real, 0.0, 1.0, true, "temporal resolve: relative depth for reuse",
+         EMCV_RESOLVE_DEPTH_TOLERANCE},
     };
     return all;
 }

@@ -31,6 +31,8 @@
 #define EMCV_RENDER_TEX_SPECULAR 15    // specular radiance (RGBA16F)
 #define EMCV_RENDER_TEX_SSS_IN 16      // separable: the horizontal pass's output; composite: scattered
 #define EMCV_RENDER_TEX_MOTION 17      // motion in pixels, current - previous (RG16F)
+#define EMCV_RENDER_TEX_RESOLVE_CURRENT 18  // resolve: the composite's linear HDR image
+#define EMCV_RENDER_TEX_RESOLVE_HISTORY 19  // resolve: last frame's resolved display values and view depth
 
 // Images written by compute passes: image units are their own small space (0..7, EMCV_MAX_IMAGE_UNITS in
 // emcv/port/bindings.h; NVIDIA has 8), so passes that never run together share units, and each pass binds its
@@ -42,6 +44,8 @@
 #define EMCV_RENDER_IMG_COUNT 1        // samples per pixel (R32UI), bound before the adaptive samples pass
 #define EMCV_RENDER_IMG_LINEAR 0       // composite: linear HDR
 #define EMCV_RENDER_IMG_DISPLAY 1      // composite: tonemapped, sRGB-encoded
+#define EMCV_RENDER_IMG_RESOLVE_HISTORY 0  // resolve: this frame's resolved display values and view depth
+#define EMCV_RENDER_IMG_RESOLVED 1     // resolve: the resolved display image (RGBA8)
 
 // Material kinds in materials[i].albedo.w
 #define EMCV_RENDER_MATERIAL_DIFFUSE 0

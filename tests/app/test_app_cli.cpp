@@ -194,10 +194,11 @@ TEST_CASE("the pass list (--print-passes) is printed per method without a GL con
         run_demo(scene + "--method reference --method diffuse,burley-8", "EMCV_GL_PLATFORMS=none");
     INFO(r.err);
     REQUIRE(r.exit_code == 0);
-    CHECK(r.out.find("method diffuse:\n  frames 0-2: gbuffer, shadow:key, lighting, composite\n") !=
+    // The temporal resolve (--resolve taa, the default) ends every list.
+    CHECK(r.out.find("method diffuse:\n  frames 0-2: gbuffer, shadow:key, lighting, composite, resolve\n") !=
           std::string::npos);
     CHECK(r.out.find("method burley-8:\n  frames 0-2: gbuffer, shadow:key, lighting, sss-burley, "
-                     "composite\n") != std::string::npos);
+                     "composite, resolve\n") != std::string::npos);
     CHECK(r.out.find("method reference") == std::string::npos);
     // The adaptive methods take one pass more than burley's, in either sampling mode (a budget is solved inside
     // the samples pass).
@@ -206,11 +207,11 @@ TEST_CASE("the pass list (--print-passes) is printed per method without a GL con
         INFO(b.err);
         REQUIRE(b.exit_code == 0);
         CHECK(b.out.find("method cv:\n  frames 0-2: gbuffer, shadow:key, lighting, sss-adaptive-samples, "
-                         "sss-burley, composite\n") != std::string::npos);
+                         "sss-burley, composite, resolve\n") != std::string::npos);
     }
     const emcv_test::command_result b = run_demo(scene + "--method cv,burley-8 --spp-budget 8", "EMCV_GL_PLATFORMS=none");
     CHECK(b.out.find("method burley-8:\n  frames 0-2: gbuffer, shadow:key, lighting, sss-burley, "
-                     "composite\n") != std::string::npos);
+                     "composite, resolve\n") != std::string::npos);
 }
 
 TEST_CASE("print-passes walks the renderer's planner: the reference records no SSS pass while it reuses", "[app][cli]") {
@@ -268,12 +269,13 @@ TEST_CASE("a small headless run writes frames and complete metrics files", "[app
     std::ifstream csv(out / "metrics.csv");
     std::string line;
     REQUIRE(std::getline(csv, line));
-    CHECK(line == "frame,method,sss_ms,frame_ms,mean_spp,max_spp,psnr_db,psnr_sss_db,rel_mse,temporal_error");
+    CHECK(line == "frame,method,sss_ms,frame_ms,mean_spp,max_spp,psnr_db,psnr_sss_db,rel_mse,temporal_error,"
+                  "psnr_resolved_db,psnr_sss_resolved_db,temporal_error_resolved");
     std::size_t rows = 0;
     while (std::getline(csv, line)) {
         INFO(line);
         const std::vector<std::string> f = emcv_test::split_fields(line, ',');
-        REQUIRE(f.size() == 10);
+        REQUIRE(f.size() == 13);
         ++rows;
         const bool reference = f[1] == "reference";
         for (std::size_t c : {2u, 3u, 4u, 5u, 8u}) CHECK(std::isfinite(std::stod(f[c])));
@@ -293,15 +295,20 @@ TEST_CASE("a small headless run writes frames and complete metrics files", "[app
         if (f[1] == "diffuse") CHECK(std::stod(f[2]) == 0.0);  // no SSS pass recorded
         if (f[0] == "0") CHECK(f[9].empty());                  // no previous frame
         else CHECK(std::stod(f[9]) >= 0.0);
+        // --resolve taa by default: the shown image's PSNR (the reference shows its raw image: inf again)
+        if (reference) CHECK(f[10] == "inf");
+        else CHECK(std::isfinite(std::stod(f[10])));
+        CHECK(f[12].empty() == (f[0] == "0"));
     }
     CHECK(rows == 3 * methods.size());
 
     const nlohmann::json j = nlohmann::json::parse(emcv_test::read_file(out / "metrics.json"));
     REQUIRE(j["rows"].size() == rows);
     CHECK(j["timing"] == "wall");  // auto on llvmpipe
+    CHECK(j["resolve"] == "taa");
     CHECK(r.out.find("clock: wall clock, glFinish at every pass boundary") != std::string::npos);
     for (const auto& row : j["rows"]) {
-        CHECK(row.size() == 11);  // the columns and the passes
+        CHECK(row.size() == 14);  // the columns and the passes
         if (row["method"] == "reference") CHECK(row["psnr_db"].is_null());
         else CHECK(row["psnr_db"].is_number());
         double sum = 0.0;  // frame_ms is the sum of the passes, added in recording order
@@ -336,6 +343,35 @@ TEST_CASE("emcv-demo --timing gpu: each frame's times arrive late and land on th
     const emcv_test::command_result bad = run_demo("--method burley-4 --timing=fast");
     CHECK(bad.exit_code == 2);
     CHECK(bad.err == "emcv-demo: --timing: expected auto, wall or gpu, got 'fast'\n");
+}
+
+TEST_CASE("emcv-demo --resolve: taa records the resolve pass and writes the shown frames, none neither", "[app][cli][gl]") {
+    for (const char* mode : {"taa", "none"}) {
+        INFO(mode);
+        const bool taa = std::string(mode) == "taa";
+        const fs::path out = scratch_dir(std::string("resolve-") + mode) / "out";
+        const emcv_test::command_result r = run_demo("--scene '" + data_dir + "/tiny.json' --size 32x32 --frames 3 "
+                                                     "--method burley-4 --resolve " + mode + " --out '" + out.string() + "'");
+        if (emcv_test::no_display(r)) SKIP("no OpenGL display: " << r.err);
+        INFO(r.err << r.out);
+        REQUIRE(r.exit_code == 0);
+        const nlohmann::json j = nlohmann::json::parse(emcv_test::read_file(out / "metrics.json"));
+        CHECK(j["resolve"] == mode);
+        for (const auto& row : j["rows"]) {
+            bool has_resolve = false;
+            for (const auto& p : row["passes"]) has_resolve = has_resolve || p["name"] == "resolve";
+            CHECK(has_resolve == (taa && row["method"] == "burley-4"));  // never the reference's
+            CHECK(row["psnr_resolved_db"].is_null() == (!taa || row["method"] == "reference"));
+        }
+        CHECK(fs::is_regular_file(out / "burley-4" / "resolved-0002.png") == taa);
+        CHECK_FALSE(fs::exists(out / "reference" / "resolved-0002.png"));
+        const emcv_test::command_result passes = run_demo("--scene '" + data_dir + "/tiny.json' --method burley-4 "
+                                                          "--print-passes --resolve " + mode);
+        CHECK((passes.out.find("composite, resolve") != std::string::npos) == taa);
+    }
+    const emcv_test::command_result bad = run_demo("--method burley-4 --resolve fxaa");
+    CHECK(bad.exit_code == 2);
+    CHECK(bad.err == "emcv-demo: --resolve: expected none or taa, got 'fxaa'\n");
 }
 
 TEST_CASE("the metrics-only flag (--no-frames) writes metrics.csv and metrics.json and no frame", "[app][cli][gl]") {

@@ -27,7 +27,7 @@ namespace {
 const std::string data_dir = EMCV_APP_TEST_DATA;
 
 struct row {
-    std::string method, lights, sampling, timing;
+    std::string method, lights, sampling, timing, resolve;
     int frame = 0, max_spp = 0;
     double sss_ms = 0.0, frame_ms = 0.0, mean_spp = 0.0;
     std::size_t sss_pixels = 0;
@@ -42,12 +42,13 @@ std::vector<row> run_eval(const std::string& args) {
     std::istringstream in(r.out);
     std::string line;
     REQUIRE(std::getline(in, line));
-    REQUIRE(line == "scene,width,height,sss_scale,method,frame,sss_ms,frame_ms,mean_spp,max_spp,sss_pixels,lights,sampling,timing");
+    REQUIRE(line == "scene,width,height,sss_scale,method,frame,sss_ms,frame_ms,mean_spp,max_spp,sss_pixels,lights,sampling,"
+                    "timing,resolve");
     std::vector<row> rows;
     while (std::getline(in, line)) {
         const std::vector<std::string> f = emcv_test::split_fields(line, ',');
         INFO(line);
-        REQUIRE(f.size() == 14);
+        REQUIRE(f.size() == 15);
         row x;
         x.method = f[4];
         x.frame = std::stoi(f[5]);
@@ -59,6 +60,7 @@ std::vector<row> run_eval(const std::string& args) {
         x.lights = f[11];
         x.sampling = f[12];
         x.timing = f[13];
+        x.resolve = f[14];
         rows.push_back(x);
     }
     return rows;
@@ -87,6 +89,7 @@ TEST_CASE("emcv-eval: rows are frame-major, fixed counts are exact, and the ligh
         CHECK(x.method == methods[i % methods.size()]);
         CHECK(x.frame_ms > 0.0);
         CHECK(x.timing == "wall");  // auto on llvmpipe: its timer queries miss compute dispatches
+        CHECK(x.resolve == "taa");  // the default: the frame an engine shows, its resolve in frame_ms
         // The key light steps 3 -> 0 at frame 3 (switch.json); the fill light stays at 1.
         CHECK(x.lights == (x.frame < 3 ? "key=3.000000;fill=1.000000" : "key=0.000000;fill=1.000000"));
         if (x.method == "diffuse") {
@@ -123,6 +126,20 @@ TEST_CASE("emcv-eval --timing gpu: every frame's row once, frame-major, once its
         "'" + std::string(EMCV_EVAL_EXE) + "' --method burley-4 --timing cpu");
     CHECK(bad.exit_code == 2);
     CHECK(bad.err == "emcv-eval: --timing: expected auto, wall or gpu, got 'cpu'\n");
+    CHECK(bad.out.empty());
+}
+
+TEST_CASE("emcv-eval --resolve none: no resolve in the rows; the reference never resolves; a bad value", "[app][eval][gl]") {
+    for (const row& x : run_eval("--scene '" + data_dir + "/switch.json' --size 48x48 --method burley-4,reference "
+                                 "--seed 3 --resolve none"))
+        CHECK(x.resolve == "none");
+    for (const row& x : run_eval("--scene '" + data_dir + "/switch.json' --size 48x48 --method burley-4,reference "
+                                 "--seed 3 --resolve taa"))
+        CHECK(x.resolve == (x.method == "reference" ? "none" : "taa"));
+    const emcv_test::command_result bad = emcv_test::run_command(
+        "'" + std::string(EMCV_EVAL_EXE) + "' --method burley-4 --resolve yes");
+    CHECK(bad.exit_code == 2);
+    CHECK(bad.err == "emcv-eval: --resolve: expected none or taa, got 'yes'\n");
     CHECK(bad.out.empty());
 }
 

@@ -24,10 +24,11 @@ namespace {
 std::vector<app::metrics_row> sample_rows() {
     const double inf = std::numeric_limits<double>::infinity();
     std::vector<app::metrics_row> rows;
-    rows.push_back({0, "burley-16", 1.5, 4.0, 16.0, 16, 30.0, 25.0, 0.02, std::nullopt, {{"gbuffer", 2.5}, {"sss-burley", 1.5}}});
-    rows.push_back({0, "reference", 9.0, 12.0, 1024.0, 1024, inf, inf, 0.0, std::nullopt, {}});
-    rows.push_back({1, "burley-16", 2.5, 5.0, 16.0, 16, 32.0, std::nullopt, 0.01, 0.125, {}});
-    rows.push_back({1, "reference", 9.0, 12.0, 1024.0, 1024, inf, inf, 0.0, 0.0, {}});
+    rows.push_back({0, "burley-16", 1.5, 4.0, 16.0, 16, 30.0, 25.0, 0.02, std::nullopt, 38.0, 33.0, std::nullopt,
+                    {{"gbuffer", 2.5}, {"sss-burley", 1.5}}});
+    rows.push_back({0, "reference", 9.0, 12.0, 1024.0, 1024, inf, inf, 0.0, std::nullopt, inf, inf, std::nullopt, {}});
+    rows.push_back({1, "burley-16", 2.5, 5.0, 16.0, 16, 32.0, std::nullopt, 0.01, 0.125, 40.5, std::nullopt, 0.0625, {}});
+    rows.push_back({1, "reference", 9.0, 12.0, 1024.0, 1024, inf, inf, 0.0, 0.0, inf, inf, 0.0, {}});
     return rows;
 }
 
@@ -37,25 +38,29 @@ TEST_CASE("metrics.csv has the contract's columns and writes inf and undefined v
     std::istringstream csv(app::metrics_csv(sample_rows()));
     std::string line;
     std::getline(csv, line);
-    CHECK(line == "frame,method,sss_ms,frame_ms,mean_spp,max_spp,psnr_db,psnr_sss_db,rel_mse,temporal_error");
+    CHECK(line == "frame,method,sss_ms,frame_ms,mean_spp,max_spp,psnr_db,psnr_sss_db,rel_mse,temporal_error,"
+                  "psnr_resolved_db,psnr_sss_resolved_db,temporal_error_resolved");
     std::getline(csv, line);
-    CHECK(line == "0,burley-16,1.5,4,16,16,30,25,0.02,");
+    CHECK(line == "0,burley-16,1.5,4,16,16,30,25,0.02,,38,33,");
     std::getline(csv, line);
-    CHECK(line == "0,reference,9,12,1024,1024,inf,inf,0,");
+    CHECK(line == "0,reference,9,12,1024,1024,inf,inf,0,,inf,inf,");
     std::getline(csv, line);
-    CHECK(line == "1,burley-16,2.5,5,16,16,32,,0.01,0.125");
+    CHECK(line == "1,burley-16,2.5,5,16,16,32,,0.01,0.125,40.5,,0.0625");
 }
 
 TEST_CASE("metrics.json carries every column, inf and undefined as null", "[app][metrics]") {
     const nlohmann::json j = nlohmann::json::parse(app::metrics_json(sample_rows()));
     REQUIRE(j["rows"].size() == 4);
-    CHECK(j["columns"].size() == 10);
-    for (const auto& row : j["rows"]) CHECK(row.size() == 11);  // the columns and the passes
+    CHECK(j["columns"].size() == 13);
+    for (const auto& row : j["rows"]) CHECK(row.size() == 14);  // the columns and the passes
     CHECK(j["rows"][0]["psnr_db"].get<double>() == 30.0);
     CHECK(j["rows"][0]["temporal_error"].is_null());
     CHECK(j["rows"][1]["psnr_db"].is_null());
     CHECK(j["rows"][2]["psnr_sss_db"].is_null());
     CHECK(j["rows"][2]["temporal_error"].get<double>() == 0.125);
+    CHECK(j["rows"][0]["psnr_resolved_db"].get<double>() == 38.0);
+    CHECK(j["rows"][2]["psnr_sss_resolved_db"].is_null());
+    CHECK(j["rows"][2]["temporal_error_resolved"].get<double>() == 0.0625);
     CHECK(j["rows"][3]["method"] == "reference");
     CHECK_FALSE(j.contains("sampling"));
     CHECK_FALSE(j.contains("timing"));
@@ -129,11 +134,17 @@ TEST_CASE("summary averages per method, keeps the maximum count, skips the refer
     CHECK(single[0].sss_ms_mean == Catch::Approx(1.5));
     CHECK(*s[0].psnr_db == Catch::Approx(31.0));
     CHECK(*s[0].psnr_sss_db == Catch::Approx(25.0));  // frame 1 has no SSS pixel: not averaged in
+    CHECK(*s[0].psnr_resolved_db == Catch::Approx(39.25));  // (38 + 40.5) / 2
     CHECK(s[1].max_spp == 1024);
     CHECK(std::isinf(*s[1].psnr_db));
     const std::string table = app::format_summary(s, {"cv vs spvg after the switch: ..."});
     CHECK(table.find("burley-16") != std::string::npos);
     CHECK(table.find("inf") != std::string::npos);
+    CHECK(table.find("psnr_resolved\n") != std::string::npos);  // the rows have resolved PSNRs: the column shows
+    CHECK(table.find("39.25\n") != std::string::npos);
+    std::vector<app::metrics_row> raw_only = sample_rows();
+    for (app::metrics_row& r : raw_only) r.psnr_resolved_db.reset();  // --resolve none: no such column
+    CHECK(app::format_summary(app::summarize(raw_only, {"burley-16"})).find("resolved") == std::string::npos);
     const std::string note = "\ncv vs spvg after the switch: ...\n";  // the last line, after the table
     CHECK(table.substr(table.size() - note.size()) == note);
 }

@@ -22,13 +22,13 @@ std::vector<app::metrics_row> rows_with_change(int change, int frames) {
     for (int f = 0; f < frames; ++f) {
         const bool after = f >= change, outside = f >= change + app::switch_window_frames;
         app::metrics_row spvg{f, "spvg", after ? 4.0 : 1.0, 5.0, after ? 40.0 : 8.0, 64, after ? 30.0 : 40.0,
-                              std::nullopt, 0.0, std::nullopt, {}};
+                              std::nullopt, 0.0, std::nullopt, std::nullopt, std::nullopt, std::nullopt, {}};
         app::metrics_row cv{f, "cv", after ? 2.0 : 1.0, 5.0, after ? 10.0 : 8.0, 64, after ? 29.0 : 40.0,
-                            std::nullopt, 0.0, std::nullopt, {}};
+                            std::nullopt, 0.0, std::nullopt, std::nullopt, std::nullopt, std::nullopt, {}};
         if (outside) cv.mean_spp = 1000.0, cv.psnr_db = 0.0, cv.sss_ms = 100.0;
         rows.push_back(spvg);
         rows.push_back(cv);
-        rows.push_back({f, "reference", 9.0, 12.0, 1024.0, 1024, std::nullopt, std::nullopt, 0.0, std::nullopt, {}});
+        rows.push_back({f, "reference", 9.0, 12.0, 1024.0, 1024, std::nullopt, std::nullopt, 0.0, std::nullopt, std::nullopt, std::nullopt, std::nullopt, {}});
     }
     return rows;
 }
@@ -47,6 +47,20 @@ TEST_CASE("the cv vs spvg line averages the 30 frames from the change and prints
     CHECK(line->find("SSS pass time 0.500x") != std::string::npos);
     CHECK(line->find("PSNR -1.00 dB") != std::string::npos);
     CHECK(line->find("cv 29.00, spvg 30.00") != std::string::npos);
+    CHECK(line->find("resolved") == std::string::npos);  // the rows have no resolved PSNR (--resolve none)
+}
+
+TEST_CASE("the comparison line adds the resolved images' gap when the rows have one", "[app][summary]") {
+    std::vector<app::metrics_row> rows = rows_with_change(20, 60);
+    for (app::metrics_row& r : rows) {
+        if (r.method == "cv") r.psnr_resolved_db = r.frame >= 20 ? 36.0 : 45.0;
+        if (r.method == "spvg") r.psnr_resolved_db = r.frame >= 20 ? 35.5 : 45.0;
+    }
+    const std::optional<std::string> line = app::compare_after_change(rows, 20, "cv", "spvg");
+    REQUIRE(line);
+    INFO(*line);
+    CHECK(line->find("PSNR -1.00 dB (cv 29.00, spvg 30.00), resolved +0.50 dB (cv 36.00, spvg 35.50)") !=
+          std::string::npos);
 }
 
 TEST_CASE("the cv vs spvg line is cut at the last frame rendered", "[app][summary]") {

@@ -60,17 +60,18 @@ TEST_CASE("the planner lists each row's SSS passes, and only for a scene that ca
     for (const method& m : all_methods()) {
         INFO("method " << m.name());
         std::vector<std::string> sss;
-        for (const std::string& p : pass_list(sphere, m, 0, 64, 48))
+        for (const std::string& p : pass_list(sphere, m, 0, 64, 48, resolve_mode::none))
             if (p.rfind("sss-", 0) == 0) sss.push_back(p);
         for (const auto& [passes, names] : expected)
             if (row_of(m).passes == passes) CHECK(sss == names);
-        for (const std::string& p : pass_list(emcv::test::no_sss(), m, 0, 64, 48)) CHECK(p.rfind("sss-", 0) != 0);
+        for (const std::string& p : pass_list(emcv::test::no_sss(), m, 0, 64, 48, resolve_mode::none))
+            CHECK(p.rfind("sss-", 0) != 0);
     }
 }
 
 TEST_CASE("the reference's planner drops its SSS passes while its inputs hold, as the renderer does") {
     const scene s = emcv::test::sphere_on_floor();
-    frame_planner planner(s, make_reference(64), 48, 32);
+    frame_planner planner(s, make_reference(64), 48, 32, resolve_mode::none);
     const auto sss_passes_of = [&](const std::vector<planned_pass>& plan) {
         int n = 0;
         for (const planned_pass& p : plan) n += is_sss_pass(p.id) ? 1 : 0;

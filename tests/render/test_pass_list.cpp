@@ -28,30 +28,50 @@ const method burley16{method::kind::burley, 16};
 
 TEST_CASE("pass lists of scenes built in code") {
     const scene sphere = emcv::test::sphere_on_floor();
-    CHECK(pass_list(sphere, burley16, 0, 64, 48) ==
+    CHECK(pass_list(sphere, burley16, 0, 64, 48, resolve_mode::none) ==
           std::vector<std::string>{"gbuffer", "shadow:key", "shadow:spot", "lighting", "sss-burley", "composite"});
-    CHECK(pass_list(sphere, method{method::kind::separable, 17}, 0, 64, 48) ==
+    CHECK(pass_list(sphere, method{method::kind::separable, 17}, 0, 64, 48, resolve_mode::none) ==
           std::vector<std::string>{"gbuffer", "shadow:key", "shadow:spot", "lighting", "sss-separable-h",
                                    "sss-separable-v", "composite"});
     // The adaptive methods: one pass more than burley's, the samples pass before their own sss-burley (which
     // also updates the history); a budget is solved inside the samples pass, so both modes record this list.
-    CHECK(pass_list(sphere, method{method::kind::cv, 0}, 0, 64, 48) ==
+    CHECK(pass_list(sphere, method{method::kind::cv, 0}, 0, 64, 48, resolve_mode::none) ==
           std::vector<std::string>{"gbuffer", "shadow:key", "shadow:spot", "lighting", "sss-adaptive-samples",
                                    "sss-burley", "composite"});
-    CHECK(pass_list(sphere, method{method::kind::cv, 0}, 0, 64, 48).size() ==
-          pass_list(sphere, burley16, 0, 64, 48).size() + 1);
+    CHECK(pass_list(sphere, method{method::kind::cv, 0}, 0, 64, 48, resolve_mode::none).size() ==
+          pass_list(sphere, burley16, 0, 64, 48, resolve_mode::none).size() + 1);
     // diffuse never scatters.
-    CHECK(pass_list(sphere, method{method::kind::diffuse, 0}, 0, 64, 48) ==
+    CHECK(pass_list(sphere, method{method::kind::diffuse, 0}, 0, 64, 48, resolve_mode::none) ==
           std::vector<std::string>{"gbuffer", "shadow:key", "shadow:spot", "lighting", "composite"});
     // Nothing scatters, nothing casts: neither an SSS nor a shadow pass.
-    CHECK(pass_list(emcv::test::no_sss(), burley16, 0, 64, 48) ==
+    CHECK(pass_list(emcv::test::no_sss(), burley16, 0, 64, 48, resolve_mode::none) ==
           std::vector<std::string>{"gbuffer", "lighting", "composite"});
     // An SSS material whose only object lies outside the view frustum: no SSS pass.
-    CHECK_FALSE(has_pass(pass_list(emcv::test::sss_outside_view(), burley16, 0, 64, 48), "sss-"));
+    CHECK_FALSE(has_pass(pass_list(emcv::test::sss_outside_view(), burley16, 0, 64, 48, resolve_mode::none), "sss-"));
     // A point light marked casts_shadow gets no shadow pass (point lights do not cast in this renderer).
     scene point = emcv::test::sphere_on_floor();
     point.lights[1].type = light::kind::point;
-    CHECK_FALSE(has_pass(pass_list(point, burley16, 0, 64, 48), "shadow:spot"));
+    CHECK_FALSE(has_pass(pass_list(point, burley16, 0, 64, 48, resolve_mode::none), "shadow:spot"));
+}
+
+TEST_CASE("the temporal resolve: one pass after the composite, for every method but the reference, never under none") {
+    const scene sphere = emcv::test::sphere_on_floor();
+    for (const method& m : all_methods()) {
+        INFO(m.name());
+        const std::vector<std::string> raw = pass_list(sphere, m, 0, 64, 48, resolve_mode::none);
+        const std::vector<std::string> resolved = pass_list(sphere, m, 0, 64, 48, resolve_mode::taa);
+        CHECK_FALSE(has_pass(raw, "resolve"));
+        if (m.type == method::kind::reference) {
+            CHECK(resolved == raw);  // the converged image is compared as it is
+        } else {
+            std::vector<std::string> expected = raw;
+            expected.push_back("resolve");
+            CHECK(resolved == expected);
+        }
+    }
+    // A scene without SSS resolves too: what is shown does not depend on whether it scatters.
+    CHECK(pass_list(emcv::test::no_sss(), burley16, 0, 64, 48, resolve_mode::taa) ==
+          std::vector<std::string>{"gbuffer", "lighting", "composite", "resolve"});
 }
 
 TEST_CASE("a light whose curve is 0 at a frame records no shadow pass that frame") {
@@ -60,7 +80,7 @@ TEST_CASE("a light whose curve is 0 at a frame records no shadow pass that frame
     const scene light_off = load_scene_argument("light-off");
     for (int frame = 0; frame < light_off.frames; ++frame) {
         INFO("frame " << frame);
-        const std::vector<std::string> passes = pass_list(light_off, burley16, frame, 128, 96);
+        const std::vector<std::string> passes = pass_list(light_off, burley16, frame, 128, 96, resolve_mode::none);
         CHECK(has_pass(passes, "shadow:key") == (frame < 30));
         CHECK_FALSE(has_pass(passes, "shadow:fill"));
     }
@@ -72,11 +92,11 @@ TEST_CASE("a light whose curve is 0 at a frame records no shadow pass that frame
     flash.peak = 5.0f;
     flash.bursts = {4};
     flash.burst_length = 2;
-    CHECK_FALSE(has_pass(pass_list(burst, burley16, 3, 64, 48), "shadow:key"));
-    CHECK(has_pass(pass_list(burst, burley16, 4, 64, 48), "shadow:key"));
-    CHECK(has_pass(pass_list(burst, burley16, 5, 64, 48), "shadow:key"));
-    CHECK_FALSE(has_pass(pass_list(burst, burley16, 6, 64, 48), "shadow:key"));
-    CHECK(has_pass(pass_list(burst, burley16, 6, 64, 48), "shadow:spot"));
+    CHECK_FALSE(has_pass(pass_list(burst, burley16, 3, 64, 48, resolve_mode::none), "shadow:key"));
+    CHECK(has_pass(pass_list(burst, burley16, 4, 64, 48, resolve_mode::none), "shadow:key"));
+    CHECK(has_pass(pass_list(burst, burley16, 5, 64, 48, resolve_mode::none), "shadow:key"));
+    CHECK_FALSE(has_pass(pass_list(burst, burley16, 6, 64, 48, resolve_mode::none), "shadow:key"));
+    CHECK(has_pass(pass_list(burst, burley16, 6, 64, 48, resolve_mode::none), "shadow:spot"));
 }
 
 TEST_CASE("pass list of each built-in scene", "[image-files]") {
@@ -85,7 +105,7 @@ TEST_CASE("pass list of each built-in scene", "[image-files]") {
     for (const std::string& name : names) {
         INFO("scene " << name);
         const scene s = load_scene_argument(name);
-        const std::vector<std::string> passes = pass_list(s, burley16, 0, 128, 96);
+        const std::vector<std::string> passes = pass_list(s, burley16, 0, 128, 96, resolve_mode::none);
         CHECK(passes.front() == "gbuffer");
         CHECK(passes.back() == "composite");
         const bool casters = std::any_of(s.lights.begin(), s.lights.end(), [](const light& l) {
@@ -114,7 +134,16 @@ TEST_CASE("the renderer records exactly the pass list", "[image-files]") {
             const frame_stats& stats = r.render(0);
             std::vector<std::string> recorded;
             for (const pass_time& p : stats.times.passes) recorded.emplace_back(p.name);
-            CHECK(recorded == pass_list(s, m, 0, 32, 24));
+            CHECK(recorded == pass_list(s, m, 0, 32, 24, resolve_mode::none));
+            {  // with the temporal resolve, its list: the resolve pass after the composite (not the reference's)
+                render_options taa = options;
+                taa.resolve = resolve_mode::taa;
+                renderer rt(s, m, taa);
+                std::vector<std::string> recorded_taa;
+                for (const pass_time& p : rt.render(0).times.passes) recorded_taa.emplace_back(p.name);
+                CHECK(recorded_taa == pass_list(s, m, 0, 32, 24, resolve_mode::taa));
+                CHECK(has_pass(recorded_taa, "resolve") == (m.type != method::kind::reference));
+            }
             if (!has_pass(recorded, "sss-")) {
                 CHECK(stats.times.sss_ms == 0.0);
                 CHECK(stats.sss_pixels == 0);
@@ -148,7 +177,7 @@ TEST_CASE("the renderer records exactly the pass list", "[image-files]") {
                 renderer rb(s, m, budget);
                 std::vector<std::string> recorded_budget;
                 for (const pass_time& p : rb.render(0).times.passes) recorded_budget.emplace_back(p.name);
-                CHECK(recorded_budget == pass_list(s, m, 0, 32, 24));
+                CHECK(recorded_budget == pass_list(s, m, 0, 32, 24, resolve_mode::none));
             }
         }
     }
@@ -168,7 +197,7 @@ TEST_CASE("the renderer skips a dark light's shadow pass on the frames it is dar
         const frame_stats& stats = r.render(frame);
         std::vector<std::string> recorded;
         for (const pass_time& p : stats.times.passes) recorded.emplace_back(p.name);
-        CHECK(recorded == pass_list(light_off, burley16, frame, 32, 24));
+        CHECK(recorded == pass_list(light_off, burley16, frame, 32, 24, resolve_mode::none));
         CHECK(has_pass(recorded, "shadow:key") == (frame < 30));
     }
     CHECK(messenger.error_count() == 0);

@@ -35,16 +35,18 @@ std::vector<std::string> split(const std::string& text) {
 std::string usage_text() {
     return "usage: emcv-eval --method M[,M...] [--scene FILE|NAME] [--size WxH] [--frames N] [--sss-scale K]\n"
            "                 [--seed S] [--heatmaps F[,F...] --heatmap-dir DIR] [--approximate-cdf]\n"
-           "                 [--spp-budget B | --target-variance V] [--timing auto|wall|gpu] [--define NAME=VALUE ...]\n"
+           "                 [--spp-budget B | --target-variance V] [--timing auto|wall|gpu]\n"
+           "                 [--resolve none|taa] [--define NAME=VALUE ...]\n"
            "Renders the methods side by side, frame by frame (no reference), and prints one CSV row per frame\n"
            "and method: scene,width,height,sss_scale,method,frame,sss_ms,frame_ms,mean_spp,max_spp,sss_pixels,lights,\n"
-           "sampling,timing (lights: name=intensity;... of the scene's light curves at the frame; sampling: the\n"
-           "adaptive methods' mode, \"budget B spp\" or \"target variance V\"; timing: the clock of sss_ms and\n"
-           "frame_ms, gpu or wall). Under GPU timestamps rows are printed once every method's stamps arrived.\n"
+           "sampling,timing,resolve (lights: name=intensity;... of the scene's light curves at the frame;\n"
+           "sampling: the adaptive methods' mode, \"budget B spp\" or \"target variance V\"; timing: the clock of\n"
+           "sss_ms and frame_ms, gpu or wall; resolve: taa or none, the reference never resolves). Under GPU\n"
+           "timestamps rows are printed once every method's stamps arrived.\n"
            "--sss-scale multiplies every scattering material's mean free path (the radius on screen).\n"
            "--heatmaps writes <method>.f<F>.samples.csv (and .alpha.csv for cv) under DIR, top row first.\n"
            "--define sets a tunable of the port headers for every shader (as emcv-demo --define).\n" +
-           demo::sampling_flags_help() + demo::timing_flag_help() +
+           demo::sampling_flags_help() + demo::timing_flag_help() + demo::resolve_flag_help() +
            "Methods (--method takes these names; emcv-demo --list-methods prints them for scripts):\n" +
            demo::method_help_lines(2);
 }
@@ -65,7 +67,7 @@ options parse_options(const std::vector<std::string>& args) {
         if (flag.rfind("--", 0) != 0) throw usage_error("unexpected argument '" + flag + "'");
         static const char* const known[] = {"--scene", "--method", "--size", "--frames", "--seed", "--sss-scale",
                                             "--heatmaps", "--define", "--spp-budget", "--target-variance", "--timing",
-                                            "--heatmap-dir"};
+                                            "--resolve", "--heatmap-dir"};
         if (std::find(std::begin(known), std::end(known), flag) == std::end(known))
             throw usage_error("unknown option '" + flag + "'");
         if (i + 1 >= args.size()) throw usage_error(flag + ": missing value");
@@ -109,6 +111,12 @@ options parse_options(const std::vector<std::string>& args) {
             try {
                 o.timing = demo::parse_timing_flag(value);
             } catch (const demo::timing_error& e) {
+                throw usage_error(e.what());
+            }
+        } else if (flag == "--resolve") {
+            try {
+                o.resolve = demo::parse_resolve_flag(value);
+            } catch (const demo::resolve_error& e) {
                 throw usage_error(e.what());
             }
         } else if (flag == "--heatmaps") {

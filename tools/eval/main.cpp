@@ -50,6 +50,7 @@ struct eval_row {
     int max_spp = 0;
     std::size_t sss_pixels = 0;
     std::string lights;
+    const char* resolve = "none";  ///< the temporal resolve this method's frame ran (the reference never does)
     bool timed = false;
 };
 
@@ -71,7 +72,7 @@ int run(const eval::options& o) {
     // stand alone.
     const std::string sampling = demo::sampling_mode_of(o.defines).text();
     std::printf("scene,width,height,sss_scale,method,frame,sss_ms,frame_ms,mean_spp,max_spp,sss_pixels,lights,sampling,"
-                "timing\n");
+                "timing,resolve\n");
     // A row waits for its frame's times (under GPU timestamps they arrive frames late); rows are printed
     // frame-major as soon as every method's row of a frame is complete.
     std::vector<eval_row> rows;
@@ -86,9 +87,10 @@ int run(const eval::options& o) {
             }
         for (; printed < rows.size() && rows[printed].timed; ++printed) {
             const eval_row& r = rows[printed];
-            std::printf("%s,%d,%d,%g,%s,%d,%.4f,%.4f,%.3f,%d,%zu,%s,%s,%s\n", s.name.c_str(), o.width, o.height,
+            std::printf("%s,%d,%d,%g,%s,%d,%.4f,%.4f,%.3f,%d,%zu,%s,%s,%s,%s\n", s.name.c_str(), o.width, o.height,
                         static_cast<double>(o.sss_scale), r.method.c_str(), r.frame, r.sss_ms, r.frame_ms, r.mean_spp,
-                        r.max_spp, r.sss_pixels, r.lights.c_str(), sampling.c_str(), demo::timing_name(clock));
+                        r.max_spp, r.sss_pixels, r.lights.c_str(), sampling.c_str(), demo::timing_name(clock),
+                        r.resolve);
         }
     };
     for (int frame = 0; frame < frames; ++frame) {
@@ -99,7 +101,9 @@ int run(const eval::options& o) {
         for (std::size_t i = 0; i < renderers.size(); ++i) {
             const demo::frame_stats& st = renderers[i].render(frame);
             const std::string name = o.methods[i].name();
-            rows.push_back({name, frame, 0.0, 0.0, st.mean_spp, st.max_spp, st.sss_pixels, lights, false});
+            const bool resolved = o.resolve == demo::resolve_mode::taa && o.methods[i].type != demo::method::kind::reference;
+            rows.push_back({name, frame, 0.0, 0.0, st.mean_spp, st.max_spp, st.sss_pixels, lights,
+                            demo::resolve_name(resolved ? o.resolve : demo::resolve_mode::none), false});
             if (dump) {
                 const std::string stem = name + ".f" + std::to_string(frame);
                 write_csv(o.heatmap_dir / (stem + ".samples.csv"), renderers[i].sample_counts());

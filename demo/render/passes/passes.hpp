@@ -18,6 +18,7 @@ void sss_burley(const frame_context& c);
 /// direction 0: horizontal, from the lighting; 1: vertical, from the horizontal pass's result.
 void sss_separable(const frame_context& c, int direction);
 void composite(const frame_context& c);
+void resolve(const frame_context& c);
 
 /// Records the planned pass `p` (the renderer's loop over frame_planner::plan).
 void record(const planned_pass& p, const frame_context& c);

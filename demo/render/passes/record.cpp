@@ -16,6 +16,7 @@ void record(const planned_pass& p, const frame_context& c) {
         case pass_id::sss_separable_h: sss_separable(c, 0); return;
         case pass_id::sss_separable_v: sss_separable(c, 1); return;
         case pass_id::composite: composite(c); return;
+        case pass_id::resolve: resolve(c); return;
     }
 }
 

@@ -1,0 +1,93 @@
+// SPDX-License-Identifier: MIT
+/// \file
+/// emcv/port/resolve.h — the per-pixel maths of a temporal resolve (TAA without jitter) after the SSS, as
+/// engines resolve a stochastic SSS before display: the history, reprojected with the motion vectors, is clipped
+/// to the current frame's 3x3 neighbourhood in YCoCg (variance clipping) and blended exponentially with the
+/// current pixel. The demo's `resolve` pass (shaders/render/resolve.comp.glsl) runs it; docs/frame.md,
+/// "Temporal resolve", states the choices and their sources.
+//
+// TUNABLES   EMCV_RESOLVE_BLEND ........ weight of the current frame in the blend, (0, 1]; default 0.1
+//            EMCV_RESOLVE_CLIP_SIGMA ... half-width of the clip box in neighbourhood standard deviations,
+//                                        (0, 4]; default 1
+//            EMCV_RESOLVE_DEPTH_TOLERANCE  relative view-depth difference beyond which a history texel is
+//                                        another surface (reset on disocclusion), (0, 1]; default 0.05
+#ifndef EMCV_PORT_RESOLVE_H
+#define EMCV_PORT_RESOLVE_H
+
+#include "port.h"
+
+/// Weight of the current frame in the exponential blend. At 0.1 a converged history averages about
+/// (2 - 0.1) / 0.1 = 19 frames of independent noise (its variance is 0.1 / (2 - 0.1) of one frame's, -12.8 dB),
+/// and a change the clip lets through is 90% taken up after 22 frames; engines ship 0.04-0.1 (Karis 2014).
+/// Range (0, 1]; 1 shows the raw frame.
+#ifndef EMCV_RESOLVE_BLEND
+#define EMCV_RESOLVE_BLEND 0.1f
+#endif
+
+/// Half-width of the clip box around the neighbourhood mean, in the neighbourhood's standard deviations
+/// (Salvi 2016's variance clipping, gamma = 1). Range (0, 4].
+#ifndef EMCV_RESOLVE_CLIP_SIGMA
+#define EMCV_RESOLVE_CLIP_SIGMA 1.0f
+#endif
+
+/// A history texel belongs to this pixel's surface when its view depth is within this fraction of where the
+/// surface was in the previous frame (the adaptive history's test, emcv_history_reusable). Range (0, 1].
+#ifndef EMCV_RESOLVE_DEPTH_TOLERANCE
+#define EMCV_RESOLVE_DEPTH_TOLERANCE 0.05f
+#endif
+
+EMCV_PORT_BEGIN
+
+/// RGB to YCoCg (luma, orange and green chroma): an exact, invertible basis in which a box around the
+/// neighbourhood follows its luma and its hue separately.
+EMCV_FN vec3 emcv_rgb_to_ycocg(EMCV_IN(vec3) c) {
+    return vec3(0.25f * c.x + 0.5f * c.y + 0.25f * c.z, 0.5f * c.x - 0.5f * c.z, -0.25f * c.x + 0.5f * c.y - 0.25f * c.z);
+}
+
+/// The inverse of emcv_rgb_to_ycocg.
+EMCV_FN vec3 emcv_ycocg_to_rgb(EMCV_IN(vec3) c) {
+    return vec3(c.x + c.y - c.z, c.x + c.z, c.x - c.y - c.z);
+}
+
+/// The clip box of a neighbourhood of n values from the sums of its values and squares, per channel: mean -+
+/// EMCV_RESOLVE_CLIP_SIGMA standard deviations (population variance, floored at 0), grown to hold the pixel's
+/// own current value. Without that a pixel that stands out of its neighbourhood (a highlight's peak, an edge)
+/// would clip even a history equal to itself, and a still image would not resolve to itself. Growing the box to
+/// the neighbourhood's whole range instead would keep more of a noisy history, but also the old image after a
+/// light change (a one-off trial on light-off, docs/frame.md).
+EMCV_FN void emcv_resolve_clip_box(EMCV_IN(vec3) sum, EMCV_IN(vec3) sum_squares, float n, EMCV_IN(vec3) current,
+                                   EMCV_OUT(vec3) lo, EMCV_OUT(vec3) hi) {
+    vec3 mean = sum / n;
+    vec3 deviation = sqrt(max(sum_squares / n - mean * mean, vec3(0.0f)));
+    lo = min(mean - float(EMCV_RESOLVE_CLIP_SIGMA) * deviation, current);
+    hi = max(mean + float(EMCV_RESOLVE_CLIP_SIGMA) * deviation, current);
+}
+
+/// The history moved along the line towards the box's centre until it lies in the box [lo, hi] (a clip, not a
+/// per-channel clamp: the clipped colour stays on the line between the history and the neighbourhood's mean,
+/// so no hue the neighbourhood lacks appears). Inside the box the history is kept unchanged. The box is at least
+/// half an 8-bit display step wide on every side: a flat channel (zero spread) would otherwise clip the history's
+/// rounding error and pull a still pixel towards its neighbours, by differences the display cannot show.
+EMCV_FN vec3 emcv_resolve_clip(EMCV_IN(vec3) history, EMCV_IN(vec3) lo, EMCV_IN(vec3) hi) {
+    vec3 centre = 0.5f * (lo + hi);
+    vec3 extent = max(0.5f * (hi - lo), vec3(0.5f / 255.0f));
+    vec3 offset = history - centre;
+    vec3 reach = abs(offset) / extent;
+    float farthest = max(reach.x, max(reach.y, reach.z));
+    return farthest > 1.0f ? centre + offset / farthest : history;
+}
+
+/// One resolve step: the clipped history blended with the current value, current weight `weight`.
+EMCV_FN vec3 emcv_resolve_blend(EMCV_IN(vec3) clipped_history, EMCV_IN(vec3) current, float weight) {
+    return mix(clipped_history, current, weight);
+}
+
+/// Whether a history texel stored at view depth `history_depth` shows the surface that was at view depth
+/// `expected_depth` in the previous frame (0 marks a texel without history: the background, or none yet).
+EMCV_FN bool emcv_resolve_same_surface(float history_depth, float expected_depth) {
+    return history_depth > 0.0f && abs(history_depth - expected_depth) <= float(EMCV_RESOLVE_DEPTH_TOLERANCE) * expected_depth;
+}
+
+EMCV_PORT_END
+
+#endif  // EMCV_PORT_RESOLVE_H

@@ -1,0 +1,87 @@
+// SPDX-License-Identifier: MIT
+// resolve: the temporal resolve after the composite (--resolve taa; docs/frame.md, "Temporal resolve"). It works
+// on display values (after the tonemap and the sRGB encoding, before the 8-bit store), where a colour's error is
+// what PSNR and a viewer see and where every value is bounded, so that one bright sample cannot hold the clip box
+// open. Per pixel: the current value and its 3x3 neighbourhood (one shared-memory tile with a one-pixel apron);
+// last frame's resolved value at the reprojected position (motion vectors, bilinear over the four texels whose
+// stored view depth shows this surface, emcv_resolve_same_surface; none: reset to the current value), clipped to
+// the neighbourhood's box in YCoCg and blended (include/emcv/port/resolve.h). The history keeps the resolved
+// value and the pixel's view depth (0 for the background, which is never blended: it does not change).
+#version 450 core
+
+#include "emcv/port/resolve.h"
+#include "emcv/port/tonemap.h"
+#include "render/gbuffer_read.h"
+
+layout(local_size_x = EMCV_RENDER_TILE_SIZE, local_size_y = EMCV_RENDER_TILE_SIZE) in;
+
+layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_MOTION)) uniform sampler2D gbuffer_motion;
+layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_RESOLVE_CURRENT)) uniform sampler2D current_linear;
+layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_RESOLVE_HISTORY)) uniform sampler2D history_previous;
+layout(rgba32f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_RESOLVE_HISTORY)) writeonly uniform image2D history_out;
+layout(rgba8, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_RESOLVED)) writeonly uniform image2D resolved_out;
+
+#define APRON_SIDE (EMCV_RENDER_TILE_SIZE + 2)
+shared vec3 tile_ycocg[APRON_SIDE * APRON_SIDE];
+
+/// The composite's value at q (clamped to the screen) as the display shows it, in YCoCg.
+vec3 display_ycocg(ivec2 q) {
+    q = clamp(q, ivec2(0), ivec2(frame.viewport.xy) - 1);
+    vec3 linear = texelFetch(current_linear, q, 0).xyz;
+    return emcv_rgb_to_ycocg(emcv_display_encode(linear * frame.background.w, int(frame.ambient.w)));
+}
+
+/// Last frame's resolved value (YCoCg) at this surface's previous position, or false where none shows it.
+bool reprojected_history(ivec2 p, float depth, out vec3 history) {
+    history = vec3(0.0f);
+    vec3 world = emcv_render_world_position(p, depth);
+    float expected_depth = (frame.prev_view_proj * vec4(world, 1.0f)).w;  // clip w = view depth
+    // Motion is current - previous in pixels: the previous position of p's centre, between four texel centres.
+    vec2 previous = vec2(p) + 0.5f - texelFetch(gbuffer_motion, p, 0).xy - 0.5f;
+    ivec2 base = ivec2(floor(previous));
+    vec2 t = previous - vec2(base);
+    float weight_sum = 0.0f;
+    for (int i = 0; i < 4; ++i) {
+        ivec2 offset = ivec2(i & 1, i >> 1);
+        float w = (offset.x == 1 ? t.x : 1.0f - t.x) * (offset.y == 1 ? t.y : 1.0f - t.y);
+        ivec2 q = base + offset;
+        if (w <= 0.0f || !emcv_render_on_screen(q)) continue;
+        vec4 texel = texelFetch(history_previous, q, 0);
+        if (!emcv_resolve_same_surface(texel.w, expected_depth)) continue;
+        history += w * texel.xyz;
+        weight_sum += w;
+    }
+    if (!(weight_sum > 0.0f)) return false;
+    history /= weight_sum;
+    return true;
+}
+
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 origin = ivec2(gl_WorkGroupID.xy) * EMCV_RENDER_TILE_SIZE - 1;
+    for (uint i = gl_LocalInvocationIndex; i < uint(APRON_SIDE * APRON_SIDE); i += uint(EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE))
+        tile_ycocg[i] = display_ycocg(origin + ivec2(int(i) % APRON_SIDE, int(i) / APRON_SIDE));
+    barrier();
+    if (!emcv_render_on_screen(p)) return;
+
+    ivec2 local = ivec2(gl_LocalInvocationID.xy) + 1;
+    vec3 current = tile_ycocg[local.x + local.y * APRON_SIDE];
+    float depth = emcv_render_depth(p);
+    vec3 resolved = current;
+    vec3 history;
+    if (depth > 0.0f && reprojected_history(p, depth, history)) {
+        vec3 sum = vec3(0.0f), sum_squares = vec3(0.0f);
+        for (int dy = -1; dy <= 1; ++dy) {
+            for (int dx = -1; dx <= 1; ++dx) {
+                vec3 v = tile_ycocg[(local.x + dx) + (local.y + dy) * APRON_SIDE];
+                sum += v;
+                sum_squares += v * v;
+            }
+        }
+        vec3 lo, hi;
+        emcv_resolve_clip_box(sum, sum_squares, 9.0f, current, lo, hi);
+        resolved = emcv_resolve_blend(emcv_resolve_clip(history, lo, hi), current, float(EMCV_RESOLVE_BLEND));
+    }
+    imageStore(history_out, p, vec4(resolved, depth));
+    imageStore(resolved_out, p, vec4(clamp(emcv_ycocg_to_rgb(resolved), 0.0f, 1.0f), 1.0f));
+}
