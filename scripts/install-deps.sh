@@ -13,7 +13,7 @@ packages=(
   nlohmann-json3-dev                       # scene files, JSON output
   libassimp-dev libmeshoptimizer-dev       # mesh files in scenes; decimating the demo assets
   libbenchmark-dev libboost-dev            # emcv-bench and the Boost.Accumulators comparison
-  glslang-tools spirv-cross                # offline GLSL validation; SPIR-V to HLSL/MSL (package tests)
+  glslang-tools spirv-cross                # offline GLSL validation; share/emcv/emcv_port_reference.hlsl; SPIR-V to HLSL/MSL and reflection (tests)
   doxygen                                  # API reference (scripts/docs.sh, ctest -L docs)
   xvfb xauth                               # xvfb-run: the emcv-demo --window test
   python3 python3-matplotlib python3-numpy # plots in docs/

@@ -8,6 +8,7 @@
 #include "emcv/port/cv.h"
 #include "emcv/port/samples.h"
 #include "emcv/port/burley.h"
+#include "tests/parity_bindings.h"
 #include "tests/parity_stream.h"
 
 layout(local_size_x = EMCV_WORKGROUP_SIZE_X) in;

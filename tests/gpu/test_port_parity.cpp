@@ -26,6 +26,7 @@
 #include <emcv/port/ema.h>
 #include <emcv/port/samples.h>
 
+#include "../../shaders/tests/parity_bindings.h"
 #include "../../shaders/tests/parity_stream.h"
 #include "gl/debug.hpp"
 #include "gl/handles.hpp"

@@ -16,11 +16,6 @@
 
 #define EMCV_WORKGROUP_SIZE_X 64  ///< local_size_x of the compute passes
 
-// tests/gpu parity shader (shaders/tests/port_parity.comp.glsl)
-#define EMCV_BINDING_PARITY_PARAMS 0  ///< uniform block: stream parameters
-#define EMCV_BINDING_PARITY_OUTPUT 1  ///< storage buffer: per-pixel results (EMCV_PARITY_OUTPUT_VEC4S vec4s)
-#define EMCV_PARITY_OUTPUT_VEC4S 4     ///< vec4s per pixel in that buffer
-
 /// Image units usable everywhere: GL_MAX_IMAGE_UNITS is at least 8 (OpenGL 4.5); every image binding is below.
 #define EMCV_MAX_IMAGE_UNITS 8
 

@@ -4,7 +4,7 @@
 #  1. every port header of the source tree is installed (the install rule takes the folder, not a list);
 #  2. a shader including each installed header, twice, compiles for OpenGL (-G) and Vulkan (-V) SPIR-V;
 #  3. SHADER validates as OpenGL GLSL, compiles to OpenGL and Vulkan SPIR-V, and spirv-cross turns the
-#     Vulkan SPIR-V into HLSL (shader model 5.0) and MSL source: an engine on another API can take it.
+#     Vulkan SPIR-V into HLSL (shader model 5.1) and MSL source: an engine on another API can take it.
 cmake_minimum_required(VERSION 3.21)
 foreach(var GLSLANG SPIRV_CROSS INCLUDE_ROOT SOURCE_PORT SHADER WORK)
   if(NOT DEFINED ${var})
@@ -49,7 +49,7 @@ run("every installed header, Vulkan SPIR-V" "${GLSLANG}" -V --target-env vulkan1
 run("consumer, OpenGL GLSL" "${GLSLANG}" -l "-I${INCLUDE_ROOT}" "${SHADER}")
 run("consumer, OpenGL SPIR-V" "${GLSLANG}" -G --target-env opengl "-I${INCLUDE_ROOT}" "${SHADER}" -o "${WORK}/consumer.gl.spv")
 run("consumer, Vulkan SPIR-V" "${GLSLANG}" -V --target-env vulkan1.0 "-I${INCLUDE_ROOT}" "${SHADER}" -o "${WORK}/consumer.vk.spv")
-run("consumer, HLSL" "${SPIRV_CROSS}" "${WORK}/consumer.vk.spv" --hlsl --shader-model 50 --output "${WORK}/consumer.hlsl")
+run("consumer, HLSL" "${SPIRV_CROSS}" "${WORK}/consumer.vk.spv" --hlsl --shader-model 51 --output "${WORK}/consumer.hlsl")
 run("consumer, MSL" "${SPIRV_CROSS}" "${WORK}/consumer.vk.spv" --msl --output "${WORK}/consumer.metal")
 # the translated sources hold the kernel with the port's workgroup size (EMCV_WORKGROUP_SIZE_X = 64)
 file(READ "${WORK}/consumer.hlsl" hlsl)

@@ -1,0 +1,123 @@
+// SPDX-License-Identifier: MIT
+// shaders/reference/port_reference.glsl — the reference kernel of the installed HLSL (share/emcv/
+// emcv_port_reference.hlsl): the body of a compute shader that goes after `#version 450 core` and the flattened
+// port (emcv_port.glsl), as an engine's would (cmake/emcv_port_hlsl.cmake assembles and translates it).
+// It binds what a GPU engine binds for the adaptive SSS methods, buffers and textures in set 0 and images in
+// set 1 (EMCV_LAYOUT_BINDING / EMCV_LAYOUT_IMAGE_BINDING), and calls every port function once, so that
+// spirv-cross's translation holds each of them as an HLSL function of the same name. One invocation per pixel:
+// decode the cv and spvg histories, pool, plan the count, sample Burley radii, push, bin sigma for the
+// budget, encode, tonemap. Not one of the renderer's passes (shaders/adaptive, shaders/render).
+
+layout(local_size_x = EMCV_WORKGROUP_SIZE_X) in;
+
+// set 0: storage buffers, a uniform block and a texture (binding numbers unique across these types)
+layout(std430, EMCV_LAYOUT_BINDING(0)) readonly buffer Irradiance { float irradiance[]; } irradiance_in;
+layout(std430, EMCV_LAYOUT_BINDING(1)) buffer Covariance { EmcvEmcm2 state[]; } covariance;   // cv, per pixel
+layout(std430, EMCV_LAYOUT_BINDING(2)) buffer Residual { EmcvMovingStats state[]; } residual;  // spvg, per pixel
+layout(std430, EMCV_LAYOUT_BINDING(3)) buffer Budget { EmcvBudgetBlock block; } budget;       // budget.h
+layout(std140, EMCV_LAYOUT_BINDING(4)) uniform Frame {
+    uvec4 frame_seed_width_height;  // (frame, seed, width, height)
+    vec4 camera;                    // (P00, viewport width, mm per world unit, view depth)
+} frame;
+layout(EMCV_LAYOUT_BINDING(5)) uniform sampler2D albedo_map;
+// set 1: images (OpenGL image units 0..7)
+layout(rgba32f, EMCV_LAYOUT_IMAGE_BINDING(0)) uniform image2D history_cov;    // (C_ff, C_fG, C_GG, count)
+layout(rg32f, EMCV_LAYOUT_IMAGE_BINDING(1)) uniform image2D history_means;    // (mean_f, mean_G)
+layout(rgba16f, EMCV_LAYOUT_IMAGE_BINDING(2)) uniform image2D history_stats;  // spvg: (mean, var / unit, count, 0)
+layout(r32ui, EMCV_LAYOUT_IMAGE_BINDING(3)) uniform uimage2D sample_count;
+layout(rgba8, EMCV_LAYOUT_IMAGE_BINDING(4)) uniform writeonly image2D display;
+
+void main() {
+    const uint width = frame.frame_seed_width_height.z;
+    const uint height = frame.frame_seed_width_height.w;
+    const uvec2 pixel = gl_GlobalInvocationID.xy;
+    if (pixel.x >= width || pixel.y >= height) return;
+    const uint index = pixel.y * width + pixel.x;
+    const uint frame_index = frame.frame_seed_width_height.x;
+    const uint seed = frame.frame_seed_width_height.y;
+    const ivec2 texel = ivec2(pixel);
+
+    // The histories: cv's EMCM in two images, spvg's moving stats in one (history.h).
+    EmcvEmcm2 cov;
+    if (!emcv_history_decode_emcm2(imageLoad(history_cov, texel), imageLoad(history_means, texel).xy, cov) ||
+        !emcv_history_reusable(1u, 1u, frame.camera.w, frame.camera.w, vec3(0.0f, 0.0f, 1.0f), vec3(0.0f, 0.0f, 1.0f)))
+        cov = emcv_emcm2_init();
+    EmcvMovingStats stats;
+    if (!emcv_history_decode_stats(imageLoad(history_stats, texel), stats) || !emcv_moving_stats_valid(stats))
+        stats = emcv_moving_stats_init();
+    if (!emcv_emcm2_valid(cov)) cov = covariance.state[index];
+
+    // Plan: the per-sample variance, pooled with the pixel itself, and the count under the tunables.
+    float sigma2 = emcv_history_sigma2_cv(cov, EMCV_HISTORY_ETA_EMCM);
+    float pooled = 0.0f;
+    uint pooled_count = 0u;
+    emcv_history_pool_add(pooled, pooled_count, sigma2);
+    emcv_history_pool_add(pooled, pooled_count, emcv_history_sigma2_moving(stats, EMCV_HISTORY_ETA_MOVING));
+    sigma2 = emcv_history_pool_sigma2(sigma2, pooled, pooled_count);
+    const float u_round = emcv_budget_u(pixel.x, pixel.y, frame_index, seed);
+    int n = emcv_history_budget_mode() ? emcv_history_count_spend(sigma2, budget.block.lambda, u_round)
+                                       : emcv_history_count_target(sigma2);
+    n = max(n, emcv_history_count_quality(sigma2, EMCV_HISTORY_TARGET, EMCV_HISTORY_N_MIN, EMCV_HISTORY_N_MAX) -
+                   emcv_history_count_budget(sigma2, budget.block.lambda, EMCV_HISTORY_SPP_BUDGET,
+                                             EMCV_HISTORY_N_MIN, EMCV_HISTORY_N_MAX, u_round));
+
+    // Scatter: Burley radii around the pixel against its unscattered irradiance G.
+    const vec3 albedo = texelFetch(albedo_map, texel, 0).rgb;
+    const vec3 d = emcv_sss_shape_distance(vec3(1.0f, 0.5f, 0.25f), albedo);
+    const float d_max = emcv_sss_widest(d);
+    const float px_per_mm = emcv_sss_pixels_per_mm(frame.camera.x, frame.camera.y, frame.camera.w, frame.camera.z);
+    const bool sub_pixel = emcv_history_sub_pixel(d_max, px_per_mm);
+    const vec2 rotation = emcv_sss_rotation(pixel.x, pixel.y, frame_index, seed);
+    const float g = irradiance_in.irradiance[index];
+    vec3 sum = vec3(0.0f);
+    vec3 weights = vec3(0.0f);
+    for (int i = 0; i < n && !sub_pixel; ++i) {
+        const vec2 u = emcv_sss_sample_uv(uint(i), rotation);
+        const float r = emcv_sss_sample_radius(u.x, d_max, (i & 1) == 1);
+        const vec2 offset = emcv_sss_offset_pixels(r, u.y, px_per_mm);
+        const uint x = uint(clamp(int(pixel.x) + int(round(offset.x)), 0, int(width) - 1));
+        const vec3 w = emcv_sss_weight(r, emcv_sss_depth_aware_radius(r, 0.0f), d, d_max);
+        sum += w * irradiance_in.irradiance[pixel.y * width + x];
+        weights += w;
+    }
+    const vec3 scattered = sub_pixel ? vec3(g) : sum / max(weights, vec3(emcv_float_min_normal()));
+    const float f = emcv_gamma_luminance(scattered);
+
+    // Update: cv's robust push of (f, G), spvg's push of f, and the residual at the previous alpha.
+    const float alpha = emcv_history_predicted_alpha(cov);
+    const float residual_value = emcv_cv_residual(f, alpha, g);
+    emcv_history_push_cv(cov, f, g, EMCV_HISTORY_ETA_EMCM, float(max(n, 1)));
+    emcv_moving_stats_push_batch(stats, f, EMCV_HISTORY_ETA_MOVING, float(max(n, 1)));
+    EmcvMovingStats res = residual.state[index];
+    emcv_moving_stats_push(res, residual_value, EMCV_HISTORY_ETA_MOVING);
+    EmcvEmcm2 plain = covariance.state[index];
+    emcv_emcm2_push(plain, vec2(f, g), EMCV_HISTORY_ETA_EMCM);
+    covariance.state[index] = plain;
+    residual.state[index] = res;
+
+    // The budget's histogram of sigma (budget.h): bin, fraction, and a bin's share at the current lambda.
+    const float sigma = sqrt(max(emcv_cv_optimal_residual_variance_emcm2(cov), 0.0f));
+    const uint bin = emcv_budget_bin(sigma);
+    atomicAdd(budget.block.bin_count[bin], 1u);
+    atomicAdd(budget.block.bin_fraction[bin], emcv_budget_fraction(sigma));
+    const float bin_sum = emcv_budget_bin_sum(bin, 1u, emcv_budget_fraction(sigma));
+    const float share = emcv_budget_bin_samples(budget.block.lambda, bin_sum, 1u, float(EMCV_HISTORY_N_MIN),
+                                                float(EMCV_HISTORY_N_MAX));
+    const uint lambda_span = emcv_budget_lambda_high_bits() - emcv_budget_lambda_low_bits();
+    const float hashed = emcv_uint_to_unit_float(emcv_pcg(index)) + emcv_hammersley(index, width).y +
+                         emcv_burley_sample_exact(emcv_r2(index).x, 1.0f) + emcv_burley_cdf(1.0f, 1.0f) +
+                         emcv_burley_profile(1.0f, 1.0f) + emcv_bits_float(emcv_float_bits(share)) +
+                         emcv_cv_residual_variance(cov.cov.x, cov.cov.y, cov.cov.z, alpha) +
+                         emcv_cv_coefficient_floor(cov.cov.y, cov.cov.z, emcv_float_min_normal()) +
+                         float(emcv_sample_count(sigma2, EMCV_HISTORY_TARGET, 1, 64)) + float(lambda_span) *
+                         emcv_history_no_samples() * emcv_history_no_variance() * emcv_history_change_z2() *
+                         emcv_history_unbias(0.2f) * emcv_history_variance_unit();
+
+    // Encode the histories, write the count and the display value.
+    imageStore(history_cov, texel, emcv_history_encode_emcm2_cov(cov));
+    imageStore(history_means, texel, vec4(emcv_history_encode_emcm2_means(cov), 0.0f, 0.0f));
+    imageStore(history_stats, texel, emcv_history_encode_stats(stats));
+    imageStore(sample_count, texel, uvec4(uint(max(n, 0))));
+    const vec3 linear = scattered * albedo + vec3(emcv_is_nan(hashed) ? 1.0f : 0.0f);
+    imageStore(display, texel, vec4(emcv_display_encode(linear, int(frame_index & 1u)) * emcv_srgb_encode(1.0f), 1.0f));
+}

@@ -1,0 +1,261 @@
+// SPDX-License-Identifier: MIT
+// An OpenGL engine taking the installed emcv as it is: no include resolver, no emcv GL code. It creates its own
+// headless EGL context (GL 4.5 core), compiles `#version 450 core` + <prefix>/share/emcv/emcv_port.glsl +
+// stream.h + a main as one compute shader, runs the per-pixel kernel of stream.h over kPixels pixels, reads
+// the states back through <emcv/port/host.hpp>'s std430 mirrors and compares them with the same kernel on the
+// CPU (the installed <emcv/port/*.h>, built with -ffp-contract=off): bit for bit (docs/porting.md, parity).
+// Exit 0 and "gl consumer: OK" on success, 1 on a failure, 77 (CTest's SKIP_RETURN_CODE) when there is no EGL
+// display, unless EMCV_REQUIRE_GL=1 makes that a failure.
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GL/glcorearb.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <emcv/port/bindings.h>
+#include <emcv/port/host.hpp>
+
+#include "stream.h"
+
+namespace {
+
+constexpr int kSkip = 77;
+constexpr GLuint kPixels = 256;  // four workgroups of EMCV_WORKGROUP_SIZE_X
+constexpr GLuint kUpdates = 200;
+
+int no_display(const char* why) {
+    const char* require = std::getenv("EMCV_REQUIRE_GL");
+    const bool required = require != nullptr && std::strcmp(require, "1") == 0;
+    std::printf("%s: %s\n", required ? "error (EMCV_REQUIRE_GL=1)" : "skipped: no EGL display", why);
+    return required ? 1 : kSkip;
+}
+
+std::string read_text(const char* path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+bool has_extension(const char* list, const char* name) {
+    if (list == nullptr) return false;
+    const std::size_t n = std::strlen(name);
+    for (const char* p = std::strstr(list, name); p != nullptr; p = std::strstr(p + n, name))
+        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return true;
+    return false;
+}
+
+/// A display: Mesa's surfaceless platform, else the first EGL device, else the default display.
+EGLDisplay open_display() {
+    const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    auto get_platform_display =
+        reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+    EGLint major = 0, minor = 0;
+    if (get_platform_display && has_extension(client, "EGL_MESA_platform_surfaceless")) {
+        EGLDisplay d = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+        if (d != EGL_NO_DISPLAY && eglInitialize(d, &major, &minor)) return d;
+    }
+    auto query_devices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+    if (get_platform_display && query_devices && has_extension(client, "EGL_EXT_platform_device")) {
+        EGLDeviceEXT device{};
+        EGLint count = 0;
+        if (query_devices(1, &device, &count) && count > 0) {
+            EGLDisplay d = get_platform_display(EGL_PLATFORM_DEVICE_EXT, device, nullptr);
+            if (d != EGL_NO_DISPLAY && eglInitialize(d, &major, &minor)) return d;
+        }
+    }
+    EGLDisplay d = eglGetDisplay(EGL_DEFAULT_DISPLAY);
+    if (d != EGL_NO_DISPLAY && eglInitialize(d, &major, &minor)) return d;
+    return EGL_NO_DISPLAY;
+}
+
+template <class F>
+F load(const char* name) {
+    F f = reinterpret_cast<F>(eglGetProcAddress(name));
+    if (f == nullptr) {
+        std::printf("FAILED: eglGetProcAddress(\"%s\") returned null\n", name);
+        std::exit(1);
+    }
+    return f;
+}
+#define CONSUMER_GL(type, name) const auto name = load<type>(#name)
+
+const char* const kMain = R"(
+layout(local_size_x = EMCV_WORKGROUP_SIZE_X) in;
+layout(std430, EMCV_LAYOUT_BINDING(0)) writeonly buffer Covariance { EmcvEmcm2 covariance[]; };
+layout(std430, EMCV_LAYOUT_BINDING(1)) writeonly buffer Residual { EmcvMovingStats residual[]; };
+layout(std430, EMCV_LAYOUT_BINDING(2)) writeonly buffer Count { int sample_count[]; };
+uniform uint updates;  // location 0 set below; the one loose uniform of this test, not of the port
+void main() {
+    uint pixel = gl_GlobalInvocationID.x;
+    EmcvEmcm2 cov;
+    EmcvMovingStats res;
+    int n;
+    consumer_pixel(pixel, updates, cov, res, n);
+    covariance[pixel] = cov;
+    residual[pixel] = res;
+    sample_count[pixel] = n;
+}
+)";
+
+template <class T>
+bool same_bits(const T& a, const T& b) {
+    return std::memcmp(&a, &b, sizeof(T)) == 0;
+}
+
+}  // namespace
+
+int main() {
+    EGLDisplay display = open_display();
+    if (display == EGL_NO_DISPLAY) return no_display("no surfaceless, device or default EGL display initialises");
+    const char* extensions = eglQueryString(display, EGL_EXTENSIONS);
+    if (!has_extension(extensions, "EGL_KHR_no_config_context") ||
+        !has_extension(extensions, "EGL_KHR_surfaceless_context"))
+        return no_display("the display lacks EGL_KHR_no_config_context or EGL_KHR_surfaceless_context");
+    if (!eglBindAPI(EGL_OPENGL_API)) return no_display("eglBindAPI(EGL_OPENGL_API) failed");
+    const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                                 EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    EGLContext context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
+    if (context == EGL_NO_CONTEXT || !eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
+        std::printf("FAILED: no OpenGL 4.5 core context on the EGL display (0x%x)\n", eglGetError());
+        return 1;
+    }
+
+    CONSUMER_GL(PFNGLGETSTRINGPROC, glGetString);
+    CONSUMER_GL(PFNGLCREATESHADERPROC, glCreateShader);
+    CONSUMER_GL(PFNGLSHADERSOURCEPROC, glShaderSource);
+    CONSUMER_GL(PFNGLCOMPILESHADERPROC, glCompileShader);
+    CONSUMER_GL(PFNGLGETSHADERIVPROC, glGetShaderiv);
+    CONSUMER_GL(PFNGLGETSHADERINFOLOGPROC, glGetShaderInfoLog);
+    CONSUMER_GL(PFNGLCREATEPROGRAMPROC, glCreateProgram);
+    CONSUMER_GL(PFNGLATTACHSHADERPROC, glAttachShader);
+    CONSUMER_GL(PFNGLLINKPROGRAMPROC, glLinkProgram);
+    CONSUMER_GL(PFNGLGETPROGRAMIVPROC, glGetProgramiv);
+    CONSUMER_GL(PFNGLGETPROGRAMINFOLOGPROC, glGetProgramInfoLog);
+    CONSUMER_GL(PFNGLGETPROGRAMRESOURCEINDEXPROC, glGetProgramResourceIndex);
+    CONSUMER_GL(PFNGLGETPROGRAMRESOURCEIVPROC, glGetProgramResourceiv);
+    CONSUMER_GL(PFNGLGETUNIFORMLOCATIONPROC, glGetUniformLocation);
+    CONSUMER_GL(PFNGLPROGRAMUNIFORM1UIPROC, glProgramUniform1ui);
+    CONSUMER_GL(PFNGLUSEPROGRAMPROC, glUseProgram);
+    CONSUMER_GL(PFNGLCREATEBUFFERSPROC, glCreateBuffers);
+    CONSUMER_GL(PFNGLNAMEDBUFFERSTORAGEPROC, glNamedBufferStorage);
+    CONSUMER_GL(PFNGLBINDBUFFERBASEPROC, glBindBufferBase);
+    CONSUMER_GL(PFNGLDISPATCHCOMPUTEPROC, glDispatchCompute);
+    CONSUMER_GL(PFNGLMEMORYBARRIERPROC, glMemoryBarrier);
+    CONSUMER_GL(PFNGLGETNAMEDBUFFERSUBDATAPROC, glGetNamedBufferSubData);
+    CONSUMER_GL(PFNGLDELETEBUFFERSPROC, glDeleteBuffers);
+    CONSUMER_GL(PFNGLDELETEPROGRAMPROC, glDeleteProgram);
+    CONSUMER_GL(PFNGLDELETESHADERPROC, glDeleteShader);
+    std::printf("GL_RENDERER: %s\n", reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
+
+    // The shader: #version, the installed flattened port, the kernel, main. No include resolver.
+    const std::string source = "#version 450 core\n" + read_text(EMCV_PORT_GLSL) + "\n" + read_text(CONSUMER_STREAM) + kMain;
+    const char* text = source.c_str();
+    const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+    glShaderSource(shader, 1, &text, nullptr);
+    glCompileShader(shader);
+    GLint ok = GL_FALSE;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    std::vector<char> log(1 << 14);
+    if (!ok) {
+        glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
+        std::printf("FAILED: the compute shader does not compile:\n%s\n", log.data());
+        return 1;
+    }
+    const GLuint program = glCreateProgram();
+    glAttachShader(program, shader);
+    glLinkProgram(program);
+    glGetProgramiv(program, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        glGetProgramInfoLog(program, static_cast<GLsizei>(log.size()), nullptr, log.data());
+        std::printf("FAILED: the compute program does not link:\n%s\n", log.data());
+        return 1;
+    }
+    int failures = 0;
+
+    // The driver's std430 layout of EmcvEmcm2 is host.hpp's.
+    const struct { const char* name; std::size_t offset; } members[] = {
+        {"covariance[0].mean", offsetof(emcv::port::host::EmcvEmcm2, mean)},
+        {"covariance[0].cov", offsetof(emcv::port::host::EmcvEmcm2, cov)},
+        {"covariance[0].count", offsetof(emcv::port::host::EmcvEmcm2, count)},
+        {"covariance[0].rejected", offsetof(emcv::port::host::EmcvEmcm2, rejected)},
+        {"covariance[0].reseeded", offsetof(emcv::port::host::EmcvEmcm2, reseeded)}};
+    for (const auto& m : members) {
+        const GLuint index = glGetProgramResourceIndex(program, GL_BUFFER_VARIABLE, m.name);
+        const GLenum props[] = {GL_OFFSET, GL_TOP_LEVEL_ARRAY_STRIDE};
+        GLint values[2] = {-1, -1};
+        glGetProgramResourceiv(program, GL_BUFFER_VARIABLE, index, 2, props, 2, nullptr, values);
+        if (values[0] != static_cast<GLint>(m.offset) || values[1] != static_cast<GLint>(sizeof(emcv::port::host::EmcvEmcm2))) {
+            std::printf("FAILED: %s at offset %d, stride %d in the driver; host.hpp: %zu, %zu\n", m.name, values[0],
+                        values[1], m.offset, sizeof(emcv::port::host::EmcvEmcm2));
+            ++failures;
+        }
+    }
+
+    GLuint buffers[3] = {};
+    glCreateBuffers(3, buffers);
+    const GLsizeiptr sizes[3] = {static_cast<GLsizeiptr>(kPixels * sizeof(emcv::port::host::EmcvEmcm2)),
+                                 static_cast<GLsizeiptr>(kPixels * sizeof(emcv::port::host::EmcvMovingStats)),
+                                 static_cast<GLsizeiptr>(kPixels * sizeof(GLint))};
+    for (GLuint b = 0; b < 3; ++b) {
+        glNamedBufferStorage(buffers[b], sizes[b], nullptr, GL_DYNAMIC_STORAGE_BIT);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, buffers[b]);
+    }
+    glProgramUniform1ui(program, glGetUniformLocation(program, "updates"), kUpdates);
+    glUseProgram(program);
+    glDispatchCompute(kPixels / EMCV_WORKGROUP_SIZE_X, 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<emcv::port::host::EmcvEmcm2> gpu_cov(kPixels);
+    std::vector<emcv::port::host::EmcvMovingStats> gpu_res(kPixels);
+    std::vector<GLint> gpu_count(kPixels);
+    glGetNamedBufferSubData(buffers[0], 0, sizes[0], gpu_cov.data());
+    glGetNamedBufferSubData(buffers[1], 0, sizes[1], gpu_res.data());
+    glGetNamedBufferSubData(buffers[2], 0, sizes[2], gpu_count.data());
+
+    // The same kernel on the CPU, compared bit for bit through the host mirrors.
+    std::set<int> counts;
+    for (GLuint pixel = 0; pixel < kPixels && failures < 10; ++pixel) {
+        EmcvEmcm2 cov;
+        EmcvMovingStats res;
+        int count = 0;
+        consumer_pixel(pixel, kUpdates, cov, res, count);
+        const EmcvEmcm2 gpu = emcv::port::host::to_port(gpu_cov[pixel]);
+        const bool cov_ok = same_bits(gpu.mean, cov.mean) && same_bits(gpu.cov, cov.cov) && gpu.count == cov.count &&
+                            gpu.rejected == cov.rejected && gpu.reseeded == cov.reseeded;
+        const bool res_ok = same_bits(gpu_res[pixel], res);
+        if (!cov_ok || !res_ok || gpu_count[pixel] != count) {
+            std::printf("FAILED: pixel %u: GPU cov (%.9g %.9g %.9g) count %u, residual var %.9g, N %d; "
+                        "CPU cov (%.9g %.9g %.9g) count %u, residual var %.9g, N %d\n",
+                        pixel, double(gpu.cov.x), double(gpu.cov.y), double(gpu.cov.z), gpu.count,
+                        double(gpu_res[pixel].variance), gpu_count[pixel], double(cov.cov.x), double(cov.cov.y),
+                        double(cov.cov.z), cov.count, double(res.variance), count);
+            ++failures;
+        }
+        counts.insert(count);
+        if (cov.count != kUpdates) ++failures;  // every sample of the stream is finite
+    }
+    if (counts.size() < 3) {
+        std::printf("FAILED: %zu distinct sample counts: the streams do not exercise the control variate\n",
+                    counts.size());
+        ++failures;
+    }
+
+    glDeleteBuffers(3, buffers);
+    glDeleteProgram(program);
+    glDeleteShader(shader);
+    eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglDestroyContext(display, context);
+    eglTerminate(display);
+    if (failures != 0) return 1;
+    std::printf("gl consumer: OK (%u pixels x %u updates bit-equal to the CPU, sample counts %d to %d)\n", kPixels,
+                kUpdates, *counts.begin(), *counts.rbegin());
+    return 0;
+}
