@@ -6,7 +6,7 @@
 // set 1 (EMCV_LAYOUT_BINDING / EMCV_LAYOUT_IMAGE_BINDING), and calls every port function once, so that
 // spirv-cross's translation holds each of them as an HLSL function of the same name. One invocation per pixel:
 // decode the cv and spvg histories, pool, plan the count, sample Burley radii, push, bin sigma for the
-// budget, encode, tonemap. Not one of the renderer's passes (shaders/adaptive, shaders/render).
+// budget, encode, tonemap, resolve. Not one of the renderer's passes (shaders/adaptive, shaders/render).
 
 layout(local_size_x = EMCV_WORKGROUP_SIZE_X) in;
 
@@ -25,7 +25,7 @@ layout(rgba32f, EMCV_LAYOUT_IMAGE_BINDING(0)) uniform image2D history_cov;    //
 layout(rg32f, EMCV_LAYOUT_IMAGE_BINDING(1)) uniform image2D history_means;    // (mean_f, mean_G)
 layout(rgba16f, EMCV_LAYOUT_IMAGE_BINDING(2)) uniform image2D history_stats;  // spvg: (mean, var / unit, count, 0)
 layout(r32ui, EMCV_LAYOUT_IMAGE_BINDING(3)) uniform uimage2D sample_count;
-layout(rgba8, EMCV_LAYOUT_IMAGE_BINDING(4)) uniform writeonly image2D display;
+layout(rgba8, EMCV_LAYOUT_IMAGE_BINDING(4)) uniform image2D display;
 
 void main() {
     const uint width = frame.frame_seed_width_height.z;
@@ -119,5 +119,17 @@ void main() {
     imageStore(history_stats, texel, emcv_history_encode_stats(stats));
     imageStore(sample_count, texel, uvec4(uint(max(n, 0))));
     const vec3 linear = scattered * albedo + vec3(emcv_is_nan(hashed) ? 1.0f : 0.0f);
-    imageStore(display, texel, vec4(emcv_display_encode(linear, int(frame_index & 1u)) * emcv_srgb_encode(1.0f), 1.0f));
+    const vec3 shown = emcv_rgb_to_ycocg(emcv_display_encode(linear, int(frame_index & 1u)) * emcv_srgb_encode(1.0f));
+
+    // The temporal resolve (resolve.h): the last displayed value as the history, clipped to a box around the
+    // pixel itself (a one-pixel neighbourhood), blended; reset where its depth is not this surface's.
+    const vec4 previous = imageLoad(display, texel);
+    vec3 history = emcv_rgb_to_ycocg(previous.rgb);
+    vec3 lo, hi;
+    emcv_resolve_clip_box(shown, shown * shown, 1.0f, shown, lo, hi);
+    if (emcv_resolve_same_surface(previous.a, frame.camera.w))
+        history = emcv_resolve_blend(emcv_resolve_clip(history, lo, hi), shown, EMCV_RESOLVE_BLEND);
+    else
+        history = shown;
+    imageStore(display, texel, vec4(emcv_ycocg_to_rgb(history), 1.0f));
 }
