@@ -41,7 +41,7 @@ struct chi2_options {
     double min_expected = 5.0;      ///< cells expected to receive fewer samples are pooled (Cochran's rule)
     std::size_t simpson_steps = 8;  ///< Simpson sub-intervals per bin and axis (even) for the pdf variants
     std::size_t worst_cells = 5;    ///< a rejection lists this many cells, largest contribution to chi2 first
-    std::string histogram_csv;      ///< when not empty: every cell is written to this file as CSV (each run)
+    std::string histogram_csv{};    ///< when not empty: every cell is written to this file as CSV (each run)
 };
 
 /// Where one cell of a chi-square histogram lies, for its message and its CSV row.
