@@ -89,7 +89,8 @@ inline void check_sampling_params(const sampling_params& p) {
     detail::require_value(p.n_min >= 1, where, "n_min", p.n_min,
                           "must be >= 1 (a pixel at 0 would never learn its noise)");
     if (p.n_min > p.n_max)
-        detail::throw_invalid_value(where, "n_min", p.n_min, ("must not exceed n_max = " + std::to_string(p.n_max)).c_str());
+        detail::throw_invalid_value(where, "n_min", p.n_min,
+                                    ("must not exceed n_max = " + std::to_string(p.n_max)).c_str());
     const float eta = sampling_eta(p);
     detail::require_value(eta > 0.0f && eta <= 0.5f, where, "eta", eta, "must lie in (0, 0.5]");
     if (p.mode == sampling_mode::quality_target)

@@ -24,7 +24,7 @@ inline std::vector<std::string>& failed_port_checks() {
 namespace port = emcv::port;
 using Catch::Matchers::ContainsSubstring;
 
-TEST_CASE("checked port: an eta outside (0, 1] or a batch below 1 is refused and reported") {
+TEST_CASE("checked port: an eta outside 0 < eta <= 1 or a batch below 1 is refused and reported") {
     failed_port_checks().clear();
     port::EmcvEmcm2 s = port::emcv_emcm2_init();
     REQUIRE(port::emcv_emcm2_push(s, glm::vec2(1.0f, 2.0f), 0.5f));

@@ -84,8 +84,9 @@ inline void write_histogram_csv(const std::string& path, const std::vector<doubl
     out << std::setprecision(17) << "cell,kind,x_lo,x_hi,y_lo,y_hi,observed,expected,contribution,pooled\n";
     for (std::size_t i = 0; i < observed.size(); ++i) {
         const chi2_cell c = cells.empty() ? chi2_cell{} : cells[i];
-        out << i << ',' << (c.type == chi2_cell::kind::bin ? "bin" : c.type == chi2_cell::kind::outside ? "outside" : "cell")
-            << ',';
+        const char* kind_name =
+            c.type == chi2_cell::kind::bin ? "bin" : (c.type == chi2_cell::kind::outside ? "outside" : "cell");
+        out << i << ',' << kind_name << ',';
         if (c.type == chi2_cell::kind::bin) out << c.x_lo << ',' << c.x_hi << ',';
         else out << ",,";
         if (c.type == chi2_cell::kind::bin && c.two_d) out << c.y_lo << ',' << c.y_hi << ',';
@@ -144,7 +145,8 @@ inline test_result chi2_test_cells(const std::vector<double>& observed, const st
         const double c = (pooled_observed - pooled_expected) * (pooled_observed - pooled_expected) / pooled_expected;
         chi2 += c;
         ++cells;
-        contributions.push_back({"the " + std::to_string(pooled) + " pooled cells", pooled_observed, pooled_expected, c});
+        contributions.push_back(
+            {"the " + std::to_string(pooled) + " pooled cells", pooled_observed, pooled_expected, c});
     }
     if (!o.histogram_csv.empty()) write_histogram_csv(o.histogram_csv, observed, expected, places, is_pooled);
     std::ostringstream m;
@@ -156,10 +158,13 @@ inline test_result chi2_test_cells(const std::vector<double>& observed, const st
     test_result r = make_result("chi-square", m.str(), chi2, chi2_survival(chi2, dof), level);
     if (!r.passed && o.worst_cells > 0) {
         std::stable_sort(contributions.begin(), contributions.end(),
-                         [](const chi2_contribution& a, const chi2_contribution& b) { return a.contribution > b.contribution; });
+                         [](const chi2_contribution& a, const chi2_contribution& b) {
+                             return a.contribution > b.contribution;
+                         });
         const std::size_t shown = std::min(o.worst_cells, contributions.size());
         std::ostringstream cells_text;
-        cells_text << "\n  largest contributions to chi2 (" << shown << " of " << contributions.size() << " cells):\n    "
+        cells_text << "\n  largest contributions to chi2 (" << shown << " of " << contributions.size()
+                   << " cells):\n    "
                    << std::left << std::setw(32) << "cell" << std::right << std::setw(10) << "observed"
                    << std::setw(10) << "expected" << std::setw(11) << "(O-E)^2/E";
         for (std::size_t k = 0; k < shown; ++k) {
