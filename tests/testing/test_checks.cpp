@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -219,7 +220,8 @@ TEST_CASE("chi-square: the worst cells of a sampler are named by their place") {
 }
 
 TEST_CASE("chi-square: histogram_csv writes every cell with its place, counts and contribution") {
-    const std::string path = "emcv-test-testing-histogram.csv";
+    // in the temporary directory: a run from the repository root leaves nothing behind
+    const std::string path = (std::filesystem::temp_directory_path() / "emcv-test-testing-histogram.csv").string();
     std::mt19937_64 rng(19);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     et::chi2_options o;
