@@ -85,16 +85,20 @@ inline float sampling_eta(const sampling_params& p) noexcept {
 /// (0, 0.5], and the mode's own value (quality target: target finite and > 0; budget: budget finite, > 0 and
 /// <= n_max). The other mode's value is not read, so it is not checked.
 inline void check_sampling_params(const sampling_params& p) {
-    constexpr const char* where = "sampling_params";
-    detail::require(p.n_min >= 1, where, "n_min must be >= 1 (a pixel at 0 would never learn its noise)");
-    detail::require(p.n_min <= p.n_max, where, "n_min must not exceed n_max");
+    constexpr const char* where = "emcv::sampling_params";
+    detail::require_value(p.n_min >= 1, where, "n_min", p.n_min,
+                          "must be >= 1 (a pixel at 0 would never learn its noise)");
+    if (p.n_min > p.n_max)
+        detail::throw_invalid_value(where, "n_min", p.n_min,
+                                    ("must not exceed n_max = " + std::to_string(p.n_max)).c_str());
     const float eta = sampling_eta(p);
-    detail::require(eta > 0.0f && eta <= 0.5f, where, "eta must lie in (0, 0.5]");
+    detail::require_value(eta > 0.0f && eta <= 0.5f, where, "eta", eta, "must lie in (0, 0.5]");
     if (p.mode == sampling_mode::quality_target)
-        detail::require(std::isfinite(p.target) && p.target > 0.0f, where, "target must be finite and > 0");
+        detail::require_value(std::isfinite(p.target) && p.target > 0.0f, where, "target", p.target,
+                              "must be finite and > 0");
     else
-        detail::require(std::isfinite(p.budget) && p.budget > 0.0f && p.budget <= static_cast<float>(p.n_max),
-                        where, "budget must be finite, > 0 and <= n_max");
+        detail::require_value(std::isfinite(p.budget) && p.budget > 0.0f && p.budget <= static_cast<float>(p.n_max),
+                              where, "budget", p.budget, "must be finite, > 0 and <= n_max");
 }
 
 namespace detail {
@@ -143,7 +147,7 @@ inline float sigma2_of(const port::EmcvMovingStats& s, float eta) { return port:
 template <class State>
 void sampling_update(const sampling_params& p, State* states, std::size_t pixels, const float* f, const float* g,
                      const int* taken) {
-    constexpr const char* where = "sampling_update";
+    constexpr const char* where = "emcv::sampling_update";
     check_sampling_params(p);
     detail::check_state_type<State>(p, where);
     detail::check_pixels(states, pixels, where, "states must not be null");
@@ -168,7 +172,7 @@ void sampling_update(const sampling_params& p, State* states, std::size_t pixels
 template <class State>
 void sampling_sigma2(const sampling_params& p, const State* states, std::size_t pixels, const std::uint8_t* sub_pixel,
                      float* out) {
-    constexpr const char* where = "sampling_sigma2";
+    constexpr const char* where = "emcv::sampling_sigma2";
     check_sampling_params(p);
     detail::check_state_type<State>(p, where);
     detail::check_pixels(states, pixels, where, "states must not be null");
@@ -194,7 +198,7 @@ inline constexpr std::size_t sampling_tile_size = 8;
 /// Throws std::invalid_argument when own or out is null, or width is 0 or does not divide pixels.
 inline void sampling_pool(const float* own, std::size_t pixels, std::size_t width, const std::uint32_t* material,
                           float* out) {
-    constexpr const char* where = "sampling_pool";
+    constexpr const char* where = "emcv::sampling_pool";
     detail::check_pixels(own, pixels, where, "own must not be null");
     detail::check_pixels(out, pixels, where, "out must not be null");
     detail::require(width > 0 && pixels % width == 0, where, "width must be > 0 and divide the pixel count");
@@ -268,7 +272,7 @@ inline void budget_add(budget_histogram& h, float sigma2) noexcept {
 /// behalf); material may be null (every pixel scatters). Throws std::invalid_argument when sigma2 is null.
 inline void budget_add(budget_histogram& h, const float* sigma2, std::size_t pixels,
                        const std::uint32_t* material = nullptr) {
-    detail::check_pixels(sigma2, pixels, "budget_add", "sigma2 must not be null");
+    detail::check_pixels(sigma2, pixels, "emcv::budget_add", "sigma2 must not be null");
     for (std::size_t i = 0; i < pixels; ++i)
         if (material == nullptr || material[i] != 0u) budget_add(h, sigma2[i]);
 }
@@ -320,7 +324,7 @@ inline float budget_solve(const sampling_params& p, const budget_histogram& h) {
 inline std::uint64_t sampling_counts(const sampling_params& p, const float* sigma2, std::size_t pixels,
                                      std::size_t width, float lambda, std::uint32_t frame, std::uint32_t seed,
                                      int* out) {
-    constexpr const char* where = "sampling_counts";
+    constexpr const char* where = "emcv::sampling_counts";
     check_sampling_params(p);
     detail::check_pixels(sigma2, pixels, where, "sigma2 must not be null");
     detail::check_pixels(out, pixels, where, "out must not be null");

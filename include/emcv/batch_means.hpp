@@ -13,7 +13,7 @@ namespace emcv {
 /// of n samples carries 1/n of the per-sample covariance. Throws std::invalid_argument when n == 0.
 template <class T>
 T batch_mean_covariance(T cov, std::uint64_t n) {
-    detail::require(n > 0, "batch_mean_covariance", "batch size n must be at least 1");
+    detail::require_value(n > 0, "emcv::batch_mean_covariance", "batch size n", n, "must be at least 1");
     return cov / static_cast<T>(n);
 }
 

@@ -100,16 +100,31 @@ template <class T>
 class control_variate {
 public:
     /// @param policy    how the residual and its coefficient are formed (residual_policy)
-    /// @param eta_cov   EMCM weight over frames (emcm_* policies), the paper uses 0.05
-    /// @param eta_alpha EMA weight that smooths alpha_SF (single_frame_ema); the paper leaves it open
-    explicit control_variate(residual_policy policy, T eta_cov = T(0.05), T eta_alpha = T(0.05))
-        : policy_(policy), cov_(eta_cov), alpha_ema_(eta_alpha) {}
+    /// @param eta_cov   EMCM weight over frames in (0, 1] (emcm_* policies), the paper uses 0.05
+    /// @param eta_alpha EMA weight in (0, 1] that smooths alpha_SF (single_frame_ema); the paper leaves it open
+    /// @param var_floor every alpha is cv_coefficient(C_fG, C_GG, var_floor): C_fG / C_GG where C_GG is above
+    ///                  the floor, 0 (no control variate) where it is not. The default, the smallest normal
+    ///                  number, only refuses zero and subnormal variances; a control with a known scale
+    ///                  should pass variance_floor(E[G], 1e-6) (docs/estimators.md, "The coefficient guard").
+    /// Throws std::invalid_argument (naming emcv::control_variate and the parameter) when a parameter the
+    /// policy uses is invalid: eta_cov for the emcm_* policies, eta_alpha for single_frame_ema, var_floor (>= 0,
+    /// not NaN) for every policy but none. A parameter the policy never reads is not checked.
+    explicit control_variate(residual_policy policy, T eta_cov = T(0.05), T eta_alpha = T(0.05),
+                             T var_floor = std::numeric_limits<T>::min())
+        : policy_(policy),
+          var_floor_(checked_floor(policy, var_floor)),
+          cov_(uses_frame_emcm(policy) ? detail::checked_eta(eta_cov, "emcv::control_variate", "eta_cov") : T(1)),
+          alpha_ema_(policy == residual_policy::single_frame_ema
+                         ? detail::checked_eta(eta_alpha, "emcv::control_variate", "eta_alpha")
+                         : T(1)) {}
 
     /// The residual policy given at construction.
     residual_policy policy() const noexcept { return policy_; }
     /// Coefficient that the next residual() applies; 0 until a frame has been seen.
     T alpha() const noexcept { return alpha_; }
-    /// The EMCM over (f, g) frame means (meaningful for the emcm_* policies).
+    /// The variance floor every alpha is computed with (the constructor's var_floor).
+    T var_floor() const noexcept { return var_floor_; }
+    /// The EMCM over (f, g) frame means (the emcm_* policies; under the others it stays empty, with eta 1).
     const emcm<T, 2>& frame_covariance() const noexcept { return cov_; }
 
     /// r_t = f - alpha_{t-1} g (Eq. 29), with g = the known G(t) under emcm_constant, f itself under none.
@@ -125,15 +140,15 @@ public:
     void update(const cv_frame<T>& fr) {
         switch (policy_) {
             case residual_policy::none: break;
-            case residual_policy::single_frame: alpha_ = cv_coefficient(fr.cov_fg, fr.var_g); break;
+            case residual_policy::single_frame: alpha_ = cv_coefficient(fr.cov_fg, fr.var_g, var_floor_); break;
             case residual_policy::single_frame_ema:
-                alpha_ema_.push(cv_coefficient(fr.cov_fg, fr.var_g));
+                alpha_ema_.push(cv_coefficient(fr.cov_fg, fr.var_g, var_floor_));
                 alpha_ = alpha_ema_.mean();
                 break;
             case residual_policy::emcm_sampled:
             case residual_policy::emcm_constant:
                 cov_.push({fr.f, fr.g});
-                alpha_ = cv_coefficient(cov_.covariance(0, 1), cov_.variance(1));
+                alpha_ = cv_coefficient(cov_.covariance(0, 1), cov_.variance(1), var_floor_);
                 break;
         }
     }
@@ -153,7 +168,18 @@ public:
     }
 
 private:
+    static bool uses_frame_emcm(residual_policy policy) noexcept {
+        return policy == residual_policy::emcm_sampled || policy == residual_policy::emcm_constant;
+    }
+    static T checked_floor(residual_policy policy, T var_floor) {
+        if (policy != residual_policy::none)
+            detail::require_value(var_floor >= T(0), "emcv::control_variate", "var_floor", var_floor,
+                                  "must be >= 0 (and not NaN)");
+        return var_floor;
+    }
+
     residual_policy policy_;
+    T var_floor_;
     T alpha_ = T(0);
     emcm<T, 2> cov_;
     moving_stats<T> alpha_ema_;

@@ -8,10 +8,11 @@
 namespace emcv {
 namespace detail {
 
-template <class T>
-T checked_eta(T eta, const char* where) {
-    require(eta > T(0) && eta <= T(1), where, "eta must lie in (0, 1]");
-    return eta;
+/// The public name of the exponential estimator with this comoment form and accuracy (error messages).
+constexpr const char* exponential_moving_name(comoment_form form, mean_accuracy accuracy) noexcept {
+    return form == comoment_form::previous_mean
+               ? "emcv::ewma_covariance"
+               : (accuracy == mean_accuracy::compensated ? "emcv::compensated_emcm" : "emcv::emcm");
 }
 
 /// Shared body of the exponential moving estimators: the weighted recurrence with geometric weights
@@ -27,14 +28,21 @@ public:
     using typename base::vector_type;
     static constexpr std::size_t dimension = N;
 
-    explicit exponential_moving(T eta) : eta_(checked_eta(eta, "exponential_moving")) {}
-    exponential_moving(T eta, const state_type& s) : base(s), eta_(checked_eta(eta, "exponential_moving")) {}
+    /// The estimator's public name, as error messages give it ("emcv::emcm").
+    static constexpr const char* name = exponential_moving_name(Form, Accuracy);
+
+    /// An empty estimator; throws std::invalid_argument unless 0 < eta <= 1.
+    explicit exponential_moving(T eta) : eta_(checked_eta(eta, name)) {}
+    /// Restores a saved state; throws std::invalid_argument naming the broken rule (weighted_covariance::valid_state).
+    exponential_moving(T eta, const state_type& s) : base(s, name), eta_(checked_eta(eta, name)) {}
 
     /// First sample: mu = x, Cov = 0 (r = 1). Later: r = eta, i.e. weight eta and decay 1 - eta.
-    /// Returns false (state unchanged, rejected() + 1) when x is not finite.
-    bool push(const vector_type& x) {
-        return base::count() == 0 ? base::template push_normalised<Accuracy>(x, T(1), comoment_form::current_mean)
-                                  : base::template push_normalised<Accuracy>(x, eta_, Form);
+    /// Returns false (state unchanged, rejected() + 1) when x is not finite. x: a braced list of exactly N
+    /// scalars, a std::array<T, N> or T[N] (any other count does not compile; sample_vector).
+    bool push(const sample_vector<T, N>& x) {
+        return base::count() == 0
+                   ? base::template push_normalised<Accuracy>(x.values(), T(1), comoment_form::current_mean)
+                   : base::template push_normalised<Accuracy>(x.values(), eta_, Form);
     }
     template <class V, class = std::enable_if_t<detail::is_vector_like<V, N>::value>>
     bool push(const V& x) { return push(detail::to_array<T, N>(x)); }

@@ -21,9 +21,9 @@ public:
     using state_type = typename emcm<T, 1>::state_type;  ///< what a history texture stores
 
     /// An empty history with weight eta in (0, 1] (SPVG: 0.2); other values throw std::invalid_argument.
-    explicit moving_stats(T eta) : e_(eta) {}
-    /// Restores a saved state; a state that is not finite or has a negative variance throws.
-    moving_stats(T eta, const state_type& s) : e_(eta, s) {}
+    explicit moving_stats(T eta) : e_(detail::checked_eta(eta, "emcv::moving_stats")) {}
+    /// Restores a saved state; a state that is not finite or has a negative variance throws (naming the rule).
+    moving_stats(T eta, const state_type& s) : e_(detail::checked_eta(eta, "emcv::moving_stats"), checked_state(s)) {}
 
     /// Returns false (state unchanged, rejected() + 1) when x is not finite.
     bool push(T x) { return e_.push(x); }
@@ -36,6 +36,12 @@ public:
     void reset() noexcept { e_.reset(); }                             ///< forgets every sample
 
 private:
+    static const state_type& checked_state(const state_type& s) {
+        if (const char* reason = weighted_covariance<T, 1>::invalid_state_reason(s))
+            detail::throw_invalid_argument("emcv::moving_stats", reason);
+        return s;
+    }
+
     emcm<T, 1> e_;
 };
 
@@ -107,8 +113,8 @@ moving_stats_counts moving_stats_batch(T* mean, T* mean_low, T* variance, T* var
 template <class T>
 moving_stats_counts moving_stats_update(T* mean, T* mean_low, T* variance, T* variance_low, const T* frame,
                                         std::size_t pixels, T eta) {
-    detail::checked_eta(eta, "moving_stats_update");
-    detail::require((mean_low == nullptr) == (variance_low == nullptr), "moving_stats_update",
+    detail::checked_eta(eta, "emcv::moving_stats_update");
+    detail::require((mean_low == nullptr) == (variance_low == nullptr), "emcv::moving_stats_update",
                     "mean_low and variance_low must both be given (compensated) or both be null (plain)");
     return mean_low ? detail::moving_stats_batch<mean_accuracy::compensated>(mean, mean_low, variance, variance_low,
                                                                             frame, pixels, eta)

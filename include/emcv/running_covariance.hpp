@@ -22,10 +22,14 @@ public:
     static constexpr std::size_t dimension = N;
 
     cumulative_covariance() = default;
-    explicit cumulative_covariance(const state_type& s) : base(s) {}
+    /// Restores a saved state; throws std::invalid_argument naming the broken rule (weighted_covariance::valid_state).
+    explicit cumulative_covariance(const state_type& s)
+        : base(s, Accuracy == mean_accuracy::compensated ? "emcv::compensated_running_covariance"
+                                                         : "emcv::running_covariance") {}
 
-    /// Adds one sample; returns false (state unchanged, rejected() + 1) when it is not finite.
-    bool push(const vector_type& x) { return base::template push_counted<Accuracy>(x); }
+    /// Adds one sample; returns false (state unchanged, rejected() + 1) when it is not finite. x: a braced
+    /// list of exactly N scalars, a std::array<T, N> or T[N] (any other count does not compile).
+    bool push(const sample_vector<T, N>& x) { return base::template push_counted<Accuracy>(x.values()); }
     template <class V, class = std::enable_if_t<detail::is_vector_like<V, N>::value>>
     bool push(const V& x) { return push(detail::to_array<T, N>(x)); }
     template <std::size_t M = N, class = std::enable_if_t<M == 1>>
@@ -40,15 +44,17 @@ public:
     using base::total_weight;
 
     /// Population (biased) covariance: sum (x - mean)(y - mean) / n.
-    T covariance(std::size_t i, std::size_t j) const noexcept { return base::covariance(i, j); }
-    T variance(std::size_t i) const noexcept { return base::variance(i); }
+    T covariance(std::size_t i, std::size_t j) const { return base::covariance(i, j); }
+    /// Population (biased) variance of component i < N.
+    T variance(std::size_t i) const { return base::variance(i); }
 
     /// Unbiased sample covariance: sum (x - mean)(y - mean) / (n - 1); 0 while n < 2.
-    T sample_covariance(std::size_t i, std::size_t j) const noexcept {
+    T sample_covariance(std::size_t i, std::size_t j) const {
+        EMCV_ASSERT(i < N && j < N, "emcv: sample_covariance(i, j) needs i < N and j < N (the estimator's dimension)");
         const auto n = base::count();
         return n < 2 ? T(0) : base::covariance(i, j) * (static_cast<T>(n) / static_cast<T>(n - 1));
     }
-    T sample_variance(std::size_t i) const noexcept { return sample_covariance(i, i); }
+    T sample_variance(std::size_t i) const { return sample_covariance(i, i); }
 };
 
 }  // namespace detail

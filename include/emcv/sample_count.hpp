@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cmath>
+#include <string>
 
 #include "detail/common.hpp"
 
@@ -13,9 +14,10 @@ namespace detail {
 
 template <class T>
 void check_budget(T target, int n_min, int n_max, const char* where) {
-    require(std::isfinite(target) && target > T(0), where, "target variance must be finite and > 0");
-    require(n_min >= 0, where, "n_min must be >= 0");
-    require(n_min <= n_max, where, "n_min must not exceed n_max");
+    require_value(std::isfinite(target) && target > T(0), where, "target variance", target, "must be finite and > 0");
+    require_value(n_min >= 0, where, "n_min", n_min, "must be >= 0");
+    if (n_min > n_max)
+        throw_invalid_value(where, "n_min", n_min, ("must not exceed n_max = " + std::to_string(n_max)).c_str());
 }
 
 /// clamp(q, n_min, n_max) rounded up to whole samples; NaN -> n_max (when the history is broken, sample).
@@ -33,7 +35,7 @@ int clamp_count(T q, int n_min, int n_max) noexcept {
 /// Throws std::invalid_argument when target <= 0, n_min < 0 or n_min > n_max.
 template <class T>
 int sample_count(T variance, T target, int n_min, int n_max) {
-    detail::check_budget(target, n_min, n_max, "sample_count");
+    detail::check_budget(target, n_min, n_max, "emcv::sample_count");
     return detail::clamp_count(variance / target, n_min, n_max);
 }
 
@@ -43,8 +45,8 @@ int sample_count(T variance, T target, int n_min, int n_max) {
 /// makes the count NaN, which gives n_max, as in sample_count.
 template <class T>
 int sample_count_true_distribution(T variance, T per_sample_history, T eta, T target, int n_min, int n_max) {
-    detail::check_budget(target, n_min, n_max, "sample_count_true_distribution");
-    detail::require(eta > T(0) && eta <= T(1), "sample_count_true_distribution", "eta must lie in (0, 1]");
+    detail::check_budget(target, n_min, n_max, "emcv::sample_count_true_distribution");
+    detail::checked_eta(eta, "emcv::sample_count_true_distribution");
     const T n_est = per_sample_history * (T(2) / eta - T(1));
     return detail::clamp_count(variance * n_est / target - n_est, n_min, n_max);
 }

@@ -195,6 +195,38 @@ EMCV_ALWAYS_INLINE void comoment_step(T* mean, T* mean_low, T* covariance, T* co
 
 }  // namespace detail
 
+/// One N-dimensional sample as the argument of a push: a braced list of exactly N scalars (`push({f, g})`),
+/// a `std::array<T, N>` or a C array `T[N]`. Any other count is a compile error naming the dimension: a
+/// `std::array<T, N>` parameter would accept `push({f})` for N = 2 and push (f, 0).
+template <class T, std::size_t N>
+class sample_vector {
+public:
+    /// From exactly N arithmetic scalars (a braced list `{f, g}`), each converted to T.
+    template <class... Scalars,
+              class = std::enable_if_t<(std::is_arithmetic<Scalars>::value && ...) && sizeof...(Scalars) != 0>>
+    sample_vector(Scalars... components) : values_{{static_cast<T>(components)...}} {  // NOLINT: implicit by design
+        static_assert(sizeof...(Scalars) == N,
+                      "emcv: a sample needs exactly N components (the estimator's dimension N)");
+    }
+    /// From a std::array of M == N components.
+    template <std::size_t M>
+    sample_vector(const std::array<T, M>& x) : values_{} {  // NOLINT: implicit by design
+        static_assert(M == N, "emcv: a sample needs exactly N components (the estimator's dimension N)");
+        for (std::size_t i = 0; i < N; ++i) values_[i] = x[i];
+    }
+    /// From a C array of M == N components.
+    template <std::size_t M>
+    sample_vector(const T (&x)[M]) : values_{} {  // NOLINT: implicit by design
+        static_assert(M == N, "emcv: a sample needs exactly N components (the estimator's dimension N)");
+        for (std::size_t i = 0; i < N; ++i) values_[i] = x[i];
+    }
+    /// The components.
+    const std::array<T, N>& values() const noexcept { return values_; }
+
+private:
+    std::array<T, N> values_;
+};
+
 /// Streaming weighted mean and covariance matrix of N-dimensional samples.
 ///
 /// Non-finite samples (any component NaN or +-Inf) and NaN or +Inf weights are rejected: the state is left
@@ -231,41 +263,47 @@ public:
     /// Throws std::invalid_argument when the state is not finite (a half-float texture that overflowed to
     /// Inf), has a negative total weight or a negative variance, or has count == 0 with anything non-zero
     /// (see valid_state): a poisoned or half-restored history is refused, never used.
-    explicit weighted_covariance(const state_type& s) : s_(s) {
-        detail::require(valid_state(s), "weighted_covariance",
-                        "restored state must be finite, with total_weight >= 0, every variance >= 0, and "
-                        "all zero when count == 0");
-    }
+    explicit weighted_covariance(const state_type& s) : weighted_covariance(s, "emcv::weighted_covariance") {}
 
     /// True when s is a state this class could have produced: finite, W >= 0, variances >= 0, and, when
     /// count == 0, empty (W, mean, covariance and their low parts all 0). A texture that stores only a mean
     /// and a covariance is restored with count >= 1 (and W = 1 for the exponential estimators): with
     /// count == 0 the next push would seed the mean and silently discard what was stored.
-    static bool valid_state(const state_type& s) noexcept {
-        if (!std::isfinite(s.total_weight) || s.total_weight < T(0)) return false;
+    static bool valid_state(const state_type& s) noexcept { return invalid_state_reason(s) == nullptr; }
+
+    /// Why s is not a valid_state (the first rule it breaks, as the text of an error message), or nullptr
+    /// when it is valid.
+    static const char* invalid_state_reason(const state_type& s) noexcept {
+        if (!std::isfinite(s.total_weight)) return "restored state must be finite: total_weight is not";
+        if (s.total_weight < T(0)) return "restored state must have total_weight >= 0";
         if (s.count == 0 && !(s.total_weight == T(0) && detail::all_zero(s.mean) &&
                               detail::all_zero(s.mean_compensation) && detail::all_zero(s.covariance) &&
                               detail::all_zero(s.covariance_compensation)))
-            return false;
-        if (!detail::all_finite(s.mean) || !detail::all_finite(s.mean_compensation)) return false;
-        if (!detail::all_finite(s.covariance) || !detail::all_finite(s.covariance_compensation)) return false;
+            return "restored state must be all zero when count == 0 (restore a stored history with count >= 1)";
+        if (!detail::all_finite(s.mean) || !detail::all_finite(s.mean_compensation))
+            return "restored state must be finite: the mean (or its low part) is not";
+        if (!detail::all_finite(s.covariance) || !detail::all_finite(s.covariance_compensation))
+            return "restored state must be finite: the covariance (or its low part) is not";
         for (std::size_t i = 0; i < N; ++i)
-            if (s.covariance[detail::packed_index(i, i, N)] < T(0)) return false;
-        return true;
+            if (s.covariance[detail::packed_index(i, i, N)] < T(0))
+                return "restored state must have every variance >= 0";
+        return nullptr;
     }
 
     /// Adds x with weight w after scaling every earlier weight by decay.
-    /// @param [in] x      the sample
+    /// @param [in] sample the sample x: a braced list of exactly N scalars, a std::array<T, N> or T[N]
     /// @param [in] weight w_{n,n} >= 0; a NaN or +Inf weight (an importance weight whose pdf reached 0) is
     ///                    treated like a non-finite sample: rejected and counted
     /// @param [in] decay  in [0, 1]: 1 keeps old samples at full weight, 0 forgets them
     /// @returns false (and leaves the state untouched, rejected() + 1) when x or the weight is not finite.
     /// push(x, 0, 0) forgets everything and gives x no weight: the estimator then holds nothing (W, mean and
     /// covariance 0; count() still counts the call), and the next push with a positive weight seeds it.
-    bool push(const vector_type& x, T weight = T(1), T decay = T(1)) {
+    bool push(const sample_vector<T, N>& sample, T weight = T(1), T decay = T(1)) {
+        constexpr const char* where = "emcv::weighted_covariance::push";
         // NaN fails neither test here (it is rejected below); -Inf is negative
-        detail::require(!(weight < T(0)), "weighted_covariance::push", "weight must be >= 0");
-        detail::require(decay >= T(0) && decay <= T(1), "weighted_covariance::push", "decay must lie in [0, 1]");
+        detail::require_value(!(weight < T(0)), where, "weight", weight, "must be >= 0");
+        detail::require_value(decay >= T(0) && decay <= T(1), where, "decay", decay, "must lie in [0, 1]");
+        const vector_type& x = sample.values();
         if (!detail::all_finite(x) || !(weight <= std::numeric_limits<T>::max())) {
             ++s_.rejected;
             return false;
@@ -308,19 +346,28 @@ public:
     std::uint64_t rejected() const noexcept { return s_.rejected; }   ///< refused non-finite samples
     T total_weight() const noexcept { return s_.total_weight; }       ///< W_n
     const vector_type& mean() const noexcept { return s_.mean; }      ///< mu_n; 0 before any sample
-    T mean(std::size_t i) const noexcept { return s_.mean[i]; }       ///< component i of mu_n
+    /// Component i < N of mu_n (EMCV_ASSERT in debug builds; not noexcept, so that a throwing EMCV_ASSERT works).
+    T mean(std::size_t i) const {
+        EMCV_ASSERT(i < N, "emcv: mean(i) needs i < N (the estimator's dimension)");
+        return s_.mean[i];
+    }
 
     /// Weighted covariance about the current mean (Eq. 24 divided by W_n); 0 before any sample.
-    T covariance(std::size_t i, std::size_t j) const noexcept {
+    /// Needs i, j < N (EMCV_ASSERT in debug builds: a packed index past the row would read another entry).
+    T covariance(std::size_t i, std::size_t j) const {
+        EMCV_ASSERT(i < N && j < N, "emcv: covariance(i, j) needs i < N and j < N (the estimator's dimension)");
         return s_.covariance[detail::packed_index(i, j, N)];
     }
-    /// covariance(i, i).
-    T variance(std::size_t i) const noexcept { return covariance(i, i); }
+    /// covariance(i, i), i < N.
+    T variance(std::size_t i) const {
+        EMCV_ASSERT(i < N, "emcv: variance(i) needs i < N (the estimator's dimension)");
+        return s_.covariance[detail::packed_index(i, i, N)];
+    }
     /// The full symmetric matrix of covariance(i, j).
     matrix_type covariance_matrix() const noexcept {
         matrix_type m{};
         for (std::size_t i = 0; i < N; ++i)
-            for (std::size_t j = 0; j < N; ++j) m[i][j] = covariance(i, j);
+            for (std::size_t j = 0; j < N; ++j) m[i][j] = s_.covariance[detail::packed_index(i, j, N)];
         return m;
     }
 
@@ -328,6 +375,11 @@ public:
     void reset() noexcept { s_ = state_type{}; }             ///< forgets every sample
 
 protected:
+    /// Restores s, or throws "<where>: <the broken rule>" (where: the public type restoring it).
+    weighted_covariance(const state_type& s, const char* where) : s_(s) {
+        if (const char* reason = invalid_state_reason(s)) detail::throw_invalid_argument(where, reason);
+    }
+
     /// The recurrence itself (detail::comoment_step), given r = w_n / W_n in [0, 1]; the caller keeps W_n.
     template <mean_accuracy Accuracy = mean_accuracy::plain>
     void step(const vector_type& x, T r, comoment_form form) noexcept {

@@ -23,7 +23,7 @@ std::string message_of(const emcv::sampling_params& p) {
     return "";
 }
 
-bool mentions(const std::string& s, const char* what) { return s.find(what) != std::string::npos; }
+bool mentions(const std::string& s, const std::string& what) { return s.find(what) != std::string::npos; }
 
 }  // namespace
 
@@ -38,26 +38,29 @@ TEST_CASE("sampling_params: each invalid value throws std::invalid_argument nami
 
     emcv::sampling_params p;
     p.n_min = 0;
-    CHECK(mentions(message_of(p), "n_min must be >= 1"));
+    CHECK(mentions(message_of(p), "emcv::sampling_params: n_min = 0 must be >= 1"));
     p = {};
     p.n_min = 9, p.n_max = 8;
-    CHECK(mentions(message_of(p), "n_min must not exceed n_max"));
+    CHECK(mentions(message_of(p), "emcv::sampling_params: n_min = 9 must not exceed n_max = 8"));
     for (const float eta : {0.0f, -0.1f, 0.51f, std::numeric_limits<float>::quiet_NaN()}) {
         p = {};
         p.eta = eta;
-        CHECK(mentions(message_of(p), "eta must lie in (0, 0.5]"));
+        CHECK(mentions(message_of(p), "emcv::sampling_params: eta = " + emcv::detail::number_text(eta) +
+                                          " must lie in (0, 0.5]"));
     }
     for (const float target : {0.0f, -1e-4f, std::numeric_limits<float>::infinity(),
                                std::numeric_limits<float>::quiet_NaN()}) {
         p = {};
         p.target = target;
-        CHECK(mentions(message_of(p), "target must be finite and > 0"));
+        CHECK(mentions(message_of(p), "emcv::sampling_params: target = " + emcv::detail::number_text(target) +
+                                          " must be finite and > 0"));
     }
     for (const float budget : {0.0f, -1.0f, 65.0f, std::numeric_limits<float>::quiet_NaN()}) {
         p = {};
         p.mode = emcv::sampling_mode::budget;
         p.budget = budget;
-        CHECK(mentions(message_of(p), "budget must be finite, > 0 and <= n_max"));
+        CHECK(mentions(message_of(p), "emcv::sampling_params: budget = " + emcv::detail::number_text(budget) +
+                                          " must be finite, > 0 and <= n_max"));
         p.mode = emcv::sampling_mode::quality_target;  // not read under a quality target
         CHECK(message_of(p).empty());
     }

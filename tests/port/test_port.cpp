@@ -270,3 +270,15 @@ TEST_CASE("port pushes reseed an invalid stored state as moving_stats_update doe
     CHECK(e.mean == glm::vec2(7.0f, 8.0f));
     CHECK(e.reseeded == 2u);
 }
+
+TEST_CASE("the unchecked port (the default) validates no parameter: what docs/porting.md says it does") {
+    // EMCV_PORT_CHECKS 0: an eta outside (0, 1] is applied as given (eta = 2: r = 2, outer weight 1 - r = -1, so
+    // the variance of 0 then 1 is 0 + 2 ((-1 * 1) * 1 - 0) = -2), and a target of 0 gives n_max where
+    // emcv::sample_count throws; tests/port/test_port_checks.cpp covers the checked variant.
+    port::EmcvMovingStats m = port::emcv_moving_stats_init();
+    REQUIRE(port::emcv_moving_stats_push(m, 0.0f, 2.0f));
+    REQUIRE(port::emcv_moving_stats_push(m, 1.0f, 2.0f));
+    CHECK(m.variance == -2.0f);
+    CHECK(m.rejected == 0u);
+    CHECK(port::emcv_sample_count(1e-3f, 0.0f, 8, 64) == 64);
+}

@@ -113,27 +113,31 @@ TEST_CASE("every shader preprocesses and validates with glslangValidator for Ope
     CHECK(shaders >= 1);
 }
 
-TEST_CASE("every port header compiles alone as GLSL 4.50 (OpenGL and Vulkan SPIR-V)") {
+TEST_CASE("every port header compiles alone as GLSL 4.50 (OpenGL and Vulkan SPIR-V), checked or not") {
     int headers = 0;
     for (const auto& entry : fs::directory_iterator(emcv_test::include_dir() / "emcv/port")) {
         const fs::path h = entry.path();
         if (h.extension() != ".h") continue;
         ++headers;
-        INFO("port header " << h.string());
-        // A minimal compute shader that includes the header twice (the guard must hold) and nothing else.
-        const fs::path wrapper = output_dir / "port_alone" / (h.stem().string() + ".comp.glsl");
-        fs::create_directories(wrapper.parent_path());
-        std::ofstream(wrapper) << "#version 450 core\n#include \"emcv/port/" << h.filename().string()
-                               << "\"\n#include \"emcv/port/" << h.filename().string()
-                               << "\"\nlayout(local_size_x = 1) in;\nvoid main() {}\n";
-        const auto src = preprocess_file(wrapper, project_options());
-        const fs::path flat = wrapper.string() + ".flat.comp";
-        std::ofstream(flat, std::ios::binary) << src.text;
-        for (const std::string& mode : {std::string("-G --target-env opengl -o ") + flat.string() + ".spv",
-                                        std::string("-V --target-env vulkan1.0 -o ") + flat.string() + ".spv"}) {
-            const emcv_test::command_result r = run(std::string(EMCV_GLSLANG_VALIDATOR) + " -S comp " + mode + " " + flat.string());
-            INFO("glslangValidator " << mode << "\n" << src.rewrite_log(r.output()));
-            CHECK(r.exit_code == 0);
+        // as shipped, and with the debug build's parameter checks (EMCV_PORT_CHECKS 1, port.h)
+        for (const int checks : {0, 1}) {
+            INFO("port header " << h.string() << ", EMCV_PORT_CHECKS " << checks);
+            // A minimal compute shader that includes the header twice (the guard must hold) and nothing else.
+            const fs::path wrapper =
+                output_dir / "port_alone" / (h.stem().string() + (checks ? ".checked" : "") + ".comp.glsl");
+            fs::create_directories(wrapper.parent_path());
+            std::ofstream(wrapper) << "#version 450 core\n#define EMCV_PORT_CHECKS " << checks << "\n#include \"emcv/port/"
+                                   << h.filename().string() << "\"\n#include \"emcv/port/" << h.filename().string()
+                                   << "\"\nlayout(local_size_x = 1) in;\nvoid main() {}\n";
+            const auto src = preprocess_file(wrapper, project_options());
+            const fs::path flat = wrapper.string() + ".flat.comp";
+            std::ofstream(flat, std::ios::binary) << src.text;
+            for (const std::string& mode : {std::string("-G --target-env opengl -o ") + flat.string() + ".spv",
+                                            std::string("-V --target-env vulkan1.0 -o ") + flat.string() + ".spv"}) {
+                const emcv_test::command_result r = run(std::string(EMCV_GLSLANG_VALIDATOR) + " -S comp " + mode + " " + flat.string());
+                INFO("glslangValidator " << mode << "\n" << src.rewrite_log(r.output()));
+                CHECK(r.exit_code == 0);
+            }
         }
     }
     CHECK(headers >= 7);

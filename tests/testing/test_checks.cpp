@@ -4,14 +4,24 @@
 #include <emcv/running_covariance.hpp>
 #include <emcv/testing/catch2.hpp>
 
+#include <catch2/catch_approx.hpp>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 #include <random>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
+#include <string>
+
+#include <catch2/matchers/catch_matchers_string.hpp>
 
 namespace et = emcv::testing;
+using Catch::Matchers::ContainsSubstring;
+using Catch::Matchers::StartsWith;
 
 TEST_CASE("t-test and z-test: a correct mean passes, a shifted one is rejected") {
     std::mt19937_64 rng(11);
@@ -95,6 +105,7 @@ TEST_CASE("chi-square: samples outside the support or not finite reject outright
     const auto r = et::chi2_test_1d_cdf(with_nan, uniform_cdf, 10, 1000);
     CHECK_FALSE(r.passed);
     CHECK(r.p_value == 0.0);
+    CHECK_THAT(r.message, StartsWith("chi-square: sampler returned 1 non-finite sample (first: nan at draw 500 of 1000)"));
     auto uniform_pdf = [](double x) { return x >= 0 && x <= 1 ? 1.0 : 0.0; };
     auto stretched = [&] { return 1.01 * u(rng); };
     const auto outside = et::chi2_test_1d_pdf(stretched, uniform_pdf, 0.0, 1.0, 10, 1000);
@@ -146,4 +157,99 @@ TEST_CASE("chi-square pools the cells expected to get fewer than min_expected sa
     CHECK(r.passed);
     CHECK(r.statistic == 0.0);
     CHECK(r.message.find("(20 pooled into one), 3 dof") != std::string::npos);
+}
+
+TEST_CASE("chi-square: each kind of sampler names its non-finite samples: how many, the first and its draw") {
+    std::mt19937_64 rng(17);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    int calls = 0;
+    auto sometimes_inf = [&] {
+        ++calls;
+        return calls % 100 == 17 ? -std::numeric_limits<double>::infinity() : u(rng);
+    };
+    auto uniform_pdf = [](double x) { return x >= 0 && x <= 1 ? 1.0 : 0.0; };
+    const auto one_d = et::chi2_test_1d_pdf(sometimes_inf, uniform_pdf, 0.0, 1.0, 10, 1000);
+    CHECK_FALSE(one_d.passed);
+    CHECK_THAT(one_d.message, StartsWith("chi-square: sampler returned 10 non-finite samples (first: -inf at draw 17 "
+                                         "of 1000)"));
+    calls = 0;
+    auto pair_with_nan = [&] {
+        ++calls;
+        return std::array<double, 2>{u(rng), calls == 3 ? std::nan("") : u(rng)};
+    };
+    const auto two_d =
+        et::chi2_test_2d_pdf(pair_with_nan, [](double, double) { return 1.0; }, {0, 1, 0, 1}, 4, 4, 1000);
+    CHECK_THAT(two_d.message, ContainsSubstring("sampler returned 1 non-finite sample (first: ("));
+    CHECK_THAT(two_d.message, ContainsSubstring(", nan) at draw 3 of 1000)"));
+}
+
+TEST_CASE("chi-square: a rejection lists the worst cells, largest contribution first") {
+    // contributions (O - E)^2 / E with E = 100: 0, 9, 0, 25, 4 -> chi2 = 38 on 4 dof, rejected
+    const std::vector<double> observed{100, 130, 100, 50, 120}, expected(5, 100.0);
+    et::chi2_options o;
+    o.worst_cells = 3;
+    const auto r = et::chi2_test(observed, expected, o);
+    REQUIRE_FALSE(r.passed);
+    CHECK(r.statistic == 38.0);
+    CHECK_THAT(r.message, ContainsSubstring("REJECTED\n  largest contributions to chi2 (3 of 5 cells):\n"
+                                            "    cell                              observed  expected  (O-E)^2/E\n"
+                                            "    cell 3                                  50       100         25\n"
+                                            "    cell 1                                 130       100          9\n"
+                                            "    cell 4                                 120       100          4"));
+    CHECK(r.message.find("cell 0:") == std::string::npos);  // only the three worst
+    o.worst_cells = 0;
+    CHECK(et::chi2_test(observed, expected, o).message.find("largest contributions") == std::string::npos);
+    // a passing test keeps its one line
+    CHECK(et::chi2_test({100, 101, 99}, {100, 100, 100}).message.find('\n') == std::string::npos);
+}
+
+TEST_CASE("chi-square: the worst cells of a sampler are named by their place") {
+    // uniform samples against the pdf 2x on [0, 1] in 4 bins: bin k expects (2k + 1) / 16 of the samples, so the
+    // first bin ([0, 0.25), 1/16 expected, 1/4 observed) contributes most, (3/16)^2 / (1/16) = 9/16 per sample
+    std::mt19937_64 rng(18);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const auto r = et::chi2_test_1d_pdf([&] { return u(rng); }, [](double x) { return x >= 0 && x <= 1 ? 2 * x : 0.0; },
+                                        0.0, 1.0, 4, 1000);
+    REQUIRE_FALSE(r.passed);
+    CHECK_THAT(r.message, ContainsSubstring("(O-E)^2/E\n    x in [0, 0.25)                   "));
+    auto exponential = [&] { return -std::log1p(-u(rng)); };
+    auto wrong_cdf = [](double x) { return x <= 0 ? 0.0 : -std::expm1(-2.0 * x); };  // rate 2, sampler rate 1
+    const auto by_cdf = et::chi2_test_1d_cdf(exponential, wrong_cdf, 8, 1000);
+    REQUIRE_FALSE(by_cdf.passed);
+    CHECK_THAT(by_cdf.message, ContainsSubstring("x in [1.03972, inf)    "));  // F^-1(7/8) = ln(8) / 2
+}
+
+TEST_CASE("chi-square: histogram_csv writes every cell with its place, counts and contribution") {
+    // in the temporary directory: a run from the repository root leaves nothing behind
+    const std::string path = (std::filesystem::temp_directory_path() / "emcv-test-testing-histogram.csv").string();
+    std::mt19937_64 rng(19);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    et::chi2_options o;
+    o.histogram_csv = path;
+    const auto r = et::chi2_test_2d_pdf([&] { return std::array<double, 2>{u(rng), u(rng)}; },
+                                        [](double x, double y) { return x >= 0 && x <= 1 && y >= 0 && y <= 1 ? 1.0 : 0.0; },
+                                        {0, 1, 0, 1}, 2, 2, 400, o);
+    CHECK_THAT(r.message, ContainsSubstring("histogram written to " + path));
+    std::ifstream in(path);
+    REQUIRE(in);
+    std::string line;
+    std::getline(in, line);
+    CHECK(line == "cell,kind,x_lo,x_hi,y_lo,y_hi,observed,expected,contribution,pooled");
+    std::vector<std::string> rows;
+    while (std::getline(in, line)) rows.push_back(line);
+    REQUIRE(rows.size() == 5);  // 2 x 2 bins and the outside cell
+    CHECK_THAT(rows[1], StartsWith("1,bin,0.5,1,0,0.5,"));  // cell (i = 1, j = 0)
+    CHECK_THAT(rows[1], ContainsSubstring(",100,"));         // expected 400 / 4
+    CHECK(rows[4] == "4,outside,,,,,0,0,,1");                // nothing outside: expectation 0, pooled
+    double observed_sum = 0.0, chi2 = 0.0;
+    for (std::size_t k = 0; k < 4; ++k) {
+        std::vector<std::string> fields;
+        std::stringstream row(rows[k]);
+        for (std::string field; std::getline(row, field, ',');) fields.push_back(field);
+        REQUIRE(fields.size() == 10);
+        observed_sum += std::stod(fields[6]);
+        chi2 += std::stod(fields[8]);
+    }
+    CHECK(observed_sum == 400.0);
+    CHECK(chi2 == Catch::Approx(r.statistic));
 }

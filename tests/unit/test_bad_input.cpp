@@ -9,12 +9,12 @@
 #include <limits>
 
 using Catch::Matchers::ContainsSubstring;
+using Catch::Matchers::Equals;
 
 TEMPLATE_TEST_CASE("eta outside the interval 0 < eta <= 1 is refused", "[bad-input]", float, double, long double) {
     using T = TestType;
     for (T eta : {T(0), T(-0.1), T(1.0001), std::numeric_limits<T>::quiet_NaN(), std::numeric_limits<T>::infinity()}) {
-        REQUIRE_THROWS_WITH((emcv::emcm<T, 2>(eta)), ContainsSubstring("eta must lie in (0, 1]"));
-        REQUIRE_THROWS_WITH((emcv::ewma_covariance<T, 2>(eta)), ContainsSubstring("eta must lie in (0, 1]"));
+        REQUIRE_THROWS_WITH((emcv::emcm<T, 2>(eta)), ContainsSubstring("eta = ") && ContainsSubstring(" must lie in (0, 1]"));
         REQUIRE_THROWS_AS(emcv::moving_stats<T>(eta), std::invalid_argument);
         REQUIRE_THROWS_AS(emcv::control_variate<T>(emcv::residual_policy::emcm_sampled, eta),
                           std::invalid_argument);
@@ -23,16 +23,79 @@ TEMPLATE_TEST_CASE("eta outside the interval 0 < eta <= 1 is refused", "[bad-inp
     REQUIRE_NOTHROW(emcv::emcm<T, 1>(std::numeric_limits<T>::min()));
 }
 
+TEST_CASE("an invalid parameter's message names the public type, the parameter, its value and the rule",
+          "[bad-input]") {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    REQUIRE_THROWS_WITH((emcv::emcm<double, 2>(2.0)), Equals("emcv::emcm: eta = 2 must lie in (0, 1]"));
+    REQUIRE_THROWS_WITH((emcv::emcm<float, 2>(1.0001f)), Equals("emcv::emcm: eta = 1.0001 must lie in (0, 1]"));
+    REQUIRE_THROWS_WITH((emcv::compensated_emcm<double, 2>(0.0)),
+                        Equals("emcv::compensated_emcm: eta = 0 must lie in (0, 1]"));
+    REQUIRE_THROWS_WITH((emcv::ewma_covariance<double, 2>(nan)),
+                        Equals("emcv::ewma_covariance: eta = nan must lie in (0, 1]"));
+    REQUIRE_THROWS_WITH(emcv::moving_stats<double>(-0.5), Equals("emcv::moving_stats: eta = -0.5 must lie in (0, 1]"));
+    REQUIRE_THROWS_WITH(emcv::control_variate<double>(emcv::residual_policy::emcm_constant, 1.5),
+                        Equals("emcv::control_variate: eta_cov = 1.5 must lie in (0, 1]"));
+    REQUIRE_THROWS_WITH(emcv::control_variate<double>(emcv::residual_policy::single_frame_ema, 0.05, 0.0),
+                        Equals("emcv::control_variate: eta_alpha = 0 must lie in (0, 1]"));
+    REQUIRE_THROWS_WITH(emcv::control_variate<double>(emcv::residual_policy::single_frame, 0.05, 0.05, -1.0),
+                        Equals("emcv::control_variate: var_floor = -1 must be >= 0 (and not NaN)"));
+    REQUIRE_THROWS_WITH(emcv::sample_count(1.0, 0.0, 8, 64),
+                        Equals("emcv::sample_count: target variance = 0 must be finite and > 0"));
+    REQUIRE_THROWS_WITH(emcv::sample_count(1.0, 1e-4, 65, 64),
+                        Equals("emcv::sample_count: n_min = 65 must not exceed n_max = 64"));
+    REQUIRE_THROWS_WITH(emcv::batch_mean_covariance(1.0, 0),
+                        Equals("emcv::batch_mean_covariance: batch size n = 0 must be at least 1"));
+    double mean = 0.0, variance = 0.0;
+    REQUIRE_THROWS_WITH(emcv::moving_stats_update(mean, variance, 1.0, 3.0),
+                        Equals("emcv::moving_stats_update: eta = 3 must lie in (0, 1]"));
+    emcv::running_covariance<double, 2>::state_type poisoned{};
+    poisoned.count = 1;
+    poisoned.total_weight = 1.0;
+    poisoned.covariance[0] = -1.0;
+    REQUIRE_THROWS_WITH((emcv::running_covariance<double, 2>(poisoned)),
+                        Equals("emcv::running_covariance: restored state must have every variance >= 0"));
+    REQUIRE_THROWS_WITH((emcv::emcm<double, 2>(0.1, poisoned)),
+                        Equals("emcv::emcm: restored state must have every variance >= 0"));
+    poisoned.covariance[0] = 0.0;
+    poisoned.mean[1] = std::numeric_limits<double>::infinity();
+    REQUIRE_THROWS_WITH((emcv::weighted_covariance<double, 2>(poisoned)),
+                        Equals("emcv::weighted_covariance: restored state must be finite: the mean (or its low part) "
+                               "is not"));
+}
+
+TEST_CASE("control_variate checks only the parameters its policy reads", "[bad-input]") {
+    using emcv::residual_policy;
+    const double bad_eta = 2.0, nan = std::numeric_limits<double>::quiet_NaN();
+    // eta_alpha is read by single_frame_ema alone, eta_cov by the emcm_* policies alone, the floor by all but none
+    REQUIRE_NOTHROW(emcv::control_variate<double>(residual_policy::emcm_sampled, 0.05, bad_eta));
+    REQUIRE_NOTHROW(emcv::control_variate<double>(residual_policy::emcm_constant, 0.05, bad_eta));
+    REQUIRE_NOTHROW(emcv::control_variate<double>(residual_policy::single_frame, bad_eta, bad_eta));
+    REQUIRE_NOTHROW(emcv::control_variate<double>(residual_policy::single_frame_ema, bad_eta, 0.05));
+    REQUIRE_NOTHROW(emcv::control_variate<double>(residual_policy::none, bad_eta, bad_eta, nan));
+    REQUIRE_THROWS_AS(emcv::control_variate<double>(residual_policy::emcm_sampled, bad_eta), std::invalid_argument);
+    REQUIRE_THROWS_AS(emcv::control_variate<double>(residual_policy::single_frame_ema, 0.05, bad_eta),
+                      std::invalid_argument);
+    REQUIRE_THROWS_AS(emcv::control_variate<double>(residual_policy::emcm_sampled, 0.05, 0.05, nan),
+                      std::invalid_argument);
+    // the policy that ignores eta_alpha still works
+    emcv::control_variate<double> cv(residual_policy::emcm_sampled, 0.5, bad_eta);
+    cv.push({1.0, 1.0, 1.0, 0.0, 0.0});
+    cv.push({3.0, 2.0, 2.0, 0.0, 0.0});
+    REQUIRE(cv.alpha() == 2.0);  // C_fG / C_GG of the frame means: d = (2, 1), one step
+}
+
 TEMPLATE_TEST_CASE("negative weights and decays outside 0..1 are refused", "[bad-input]", float, double,
                    long double) {
     using T = TestType;
     emcv::weighted_covariance<T, 2> e;
     const std::array<T, 2> x{T(1), T(2)};
-    REQUIRE_THROWS_WITH(e.push(x, T(-1)), ContainsSubstring("weight must be >= 0"));
-    REQUIRE_THROWS_WITH(e.push(x, -std::numeric_limits<T>::infinity()), ContainsSubstring("weight must be >= 0"));
+    REQUIRE_THROWS_WITH(e.push(x, T(-1)), Equals("emcv::weighted_covariance::push: weight = -1 must be >= 0"));
+    REQUIRE_THROWS_WITH(e.push(x, -std::numeric_limits<T>::infinity()),
+                        Equals("emcv::weighted_covariance::push: weight = -inf must be >= 0"));
     REQUIRE_THROWS_WITH(e.push(x, -std::numeric_limits<T>::denorm_min()), ContainsSubstring("weight"));
-    REQUIRE_THROWS_WITH(e.push(x, T(1), T(-0.5)), ContainsSubstring("decay must lie in [0, 1]"));
-    REQUIRE_THROWS_WITH(e.push(x, T(1), T(1.5)), ContainsSubstring("decay must lie in [0, 1]"));
+    REQUIRE_THROWS_WITH(e.push(x, T(1), T(-0.5)),
+                        Equals("emcv::weighted_covariance::push: decay = -0.5 must lie in [0, 1]"));
+    REQUIRE_THROWS_WITH(e.push(x, T(1), T(1.5)), ContainsSubstring("decay = 1.5 must lie in [0, 1]"));
     REQUIRE_THROWS_WITH(e.push(x, T(1), std::numeric_limits<T>::quiet_NaN()), ContainsSubstring("decay"));
     REQUIRE(e.count() == 0);  // a refused call changes nothing
     REQUIRE(e.rejected() == 0);
@@ -87,7 +150,8 @@ TEMPLATE_TEST_CASE("a restored state with count 0 must be empty", "[bad-input]",
     REQUIRE_NOTHROW((emcv::emcm<T, 2>(T(0.05), s)));
     auto with_mean = s;
     with_mean.mean = {T(0.5), T(1)};
-    REQUIRE_THROWS_WITH((emcv::emcm<T, 2>(T(0.05), with_mean)), ContainsSubstring("all zero when count == 0"));
+    REQUIRE_THROWS_WITH((emcv::emcm<T, 2>(T(0.05), with_mean)), Equals("emcv::emcm: restored state must be all zero when count == 0 "
+                                                                    "(restore a stored history with count >= 1)"));
     auto with_cov = s;
     with_cov.covariance[2] = T(0.25);
     REQUIRE_THROWS_AS((emcv::moving_stats<T>(T(0.2), typename emcv::moving_stats<T>::state_type{0, 0, T(0), {T(0)},

@@ -4,6 +4,7 @@
 #include <emcv/running_covariance.hpp>
 #include <emcv/sample_count.hpp>
 
+#include <catch2/catch_approx.hpp>
 #include <catch2/catch_test_macros.hpp>
 #include <catch2/matchers/catch_matchers_string.hpp>
 
@@ -108,7 +109,7 @@ TEST_CASE("batch_mean_covariance divides by the batch size (Eq. 27)", "[batch]")
     REQUIRE(emcv::batch_mean_covariance(1.6, 16) == 0.1);
     REQUIRE(emcv::batch_mean_covariance(3.0f, 1) == 3.0f);
     REQUIRE_THROWS_WITH(emcv::batch_mean_covariance(1.0, 0),
-                        Catch::Matchers::ContainsSubstring("batch size n must be at least 1"));
+                        Catch::Matchers::ContainsSubstring("batch size n = 0 must be at least 1"));
 }
 
 TEST_CASE("sample_count clamps variance / target and rounds up (SPVG)", "[samples]") {
@@ -151,10 +152,35 @@ TEST_CASE("sample_count rejects a meaningless budget", "[samples]") {
     using Catch::Matchers::ContainsSubstring;
     REQUIRE_THROWS_WITH(emcv::sample_count(1.0, 0.0, 8, 64), ContainsSubstring("target variance"));
     REQUIRE_THROWS_WITH(emcv::sample_count(1.0, std::nan(""), 8, 64), ContainsSubstring("target variance"));
-    REQUIRE_THROWS_WITH(emcv::sample_count(1.0, 1e-4, -1, 64), ContainsSubstring("n_min must be >= 0"));
-    REQUIRE_THROWS_WITH(emcv::sample_count(1.0, 1e-4, 65, 64), ContainsSubstring("n_min must not exceed n_max"));
+    REQUIRE_THROWS_WITH(emcv::sample_count(1.0, 1e-4, -1, 64), ContainsSubstring("n_min = -1 must be >= 0"));
+    REQUIRE_THROWS_WITH(emcv::sample_count(1.0, 1e-4, 65, 64), ContainsSubstring("n_min = 65 must not exceed n_max = 64"));
     REQUIRE_THROWS_WITH(emcv::sample_count_true_distribution(1.0, 1.0, 0.0, 1e-4, 8, 64),
-                        ContainsSubstring("eta must lie in (0, 1]"));
+                        ContainsSubstring("eta = 0 must lie in (0, 1]"));
+}
+
+TEST_CASE("control_variate computes every alpha with its variance floor", "[cv]") {
+    // Var(G) = 1e-7 against Cov(f, G) = 1: without a floor alpha = 1e7, a coefficient divided out of a
+    // variance at the noise level; a floor above Var(G) turns the control variate off (alpha = 0).
+    const emcv::cv_frame<double> tiny_control{1.0, 1.0, 1.0, 1.0, 1e-7};
+    for (auto policy : {emcv::residual_policy::single_frame, emcv::residual_policy::single_frame_ema}) {
+        emcv::control_variate<double> unfloored(policy, 0.05, 1.0);
+        unfloored.update(tiny_control);
+        REQUIRE(unfloored.alpha() == Catch::Approx(1e7));
+        emcv::control_variate<double> floored(policy, 0.05, 1.0, 1e-6);
+        REQUIRE(floored.var_floor() == 1e-6);
+        floored.update(tiny_control);
+        REQUIRE(floored.alpha() == 0.0);
+    }
+    // emcm_sampled, eta 0.5: frame means (f, g) = (0, 0) then (1, sqrt(1e-7)): Cov = 0.25 d d^T, so
+    // C_GG = 2.5e-8 and alpha = C_fG / C_GG = 1 / sqrt(1e-7) without a floor
+    const double dg = std::sqrt(1e-7);
+    for (double floor : {0.0, 1e-6}) {
+        emcv::control_variate<double> cv(emcv::residual_policy::emcm_sampled, 0.5, 0.05, floor);
+        cv.update({0.0, 0.0, 0.0, 0.0, 0.0});
+        cv.update({1.0, dg, dg, 0.0, 0.0});
+        if (floor == 0.0) REQUIRE(cv.alpha() == Catch::Approx(1.0 / dg));
+        else REQUIRE(cv.alpha() == 0.0);
+    }
 }
 
 TEST_CASE("a broken history samples fully; a NaN floor turns the control variate off", "[samples][cv]") {

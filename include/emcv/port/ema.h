@@ -83,6 +83,13 @@ EMCV_FN float emcv_comoment_step(float c, float r, float outer, float di, float 
 /// n was (supp. Eq. 25-27: a mean of n samples has 1/n of the per-sample covariance; docs/renderer.md derives
 /// the expectation). n = 1 is supp. Eq. 21 exactly, bit for bit. Returns false when x is not finite.
 EMCV_FN bool emcv_emcm2_push_batch(EMCV_INOUT(EmcvEmcm2) s, EMCV_IN(vec2) x, float eta, float n) {
+#if EMCV_PORT_CHECKS
+    // a debug build refuses what the host should have refused (port.h, CHECKS); NaN fails both compares
+    if (!EMCV_PORT_CHECK(eta > 0.0f && eta <= 1.0f) || !EMCV_PORT_CHECK(n >= 1.0f && n <= emcv_float_max())) {
+        s.rejected = s.rejected + 1u;
+        return false;
+    }
+#endif
     if (!emcv_is_finite(x.x) || !emcv_is_finite(x.y)) {
         s.rejected = s.rejected + 1u;
         return false;
@@ -131,6 +138,12 @@ EMCV_FN bool emcv_moving_stats_valid(EMCV_IN(EmcvMovingStats) s) {
 /// r = 1 on the first sample, eta afterwards. n = 1 is emcv::moving_stats (= emcm<T, 1>), same operations;
 /// n scales the variance to a per-sample one as in emcv_emcm2_push_batch.
 EMCV_FN bool emcv_moving_stats_push_batch(EMCV_INOUT(EmcvMovingStats) s, float x, float eta, float n) {
+#if EMCV_PORT_CHECKS
+    if (!EMCV_PORT_CHECK(eta > 0.0f && eta <= 1.0f) || !EMCV_PORT_CHECK(n >= 1.0f && n <= emcv_float_max())) {
+        s.rejected = s.rejected + 1u;
+        return false;
+    }
+#endif
     if (!emcv_is_finite(x)) {
         s.rejected = s.rejected + 1u;
         return false;

@@ -16,7 +16,16 @@
 //            EMCV_INOUT(T) .. in/out parameter          (C++ `T&`, GLSL `inout T`)
 //            EMCV_OUT(T) .... output parameter          (C++ `T&`, GLSL `out T`)
 //            EMCV_PRECISE ... no FMA contraction / reassociation of the value (C++ empty, GLSL `precise`)
+//            EMCV_PORT_CHECKS  0 (default) or 1: parameter checks, for debug builds (below)
 //            Each is defined only when the includer has not defined it already.
+// CHECKS     The port validates no parameter by default: a shader cannot throw, and a check per pixel and
+//            frame costs instructions and registers for values the host validated once (docs/porting.md,
+//            "What the port does not check"). With EMCV_PORT_CHECKS 1 (a debug build), the pushes refuse an
+//            eta outside (0, 1] or a batch size n < 1 like a non-finite sample (state unchanged, `rejected`
+//            + 1, false), and emcv_sample_count returns -1 for a target that is not finite and > 0 or for
+//            n_min < 0 or n_min > n_max; in C++ each refusal also reaches EMCV_ASSERT
+//            (emcv/detail/common.hpp: aborts without NDEBUG, overridable). With 0 the checks are not
+//            compiled at all: the code is the code without them.
 #ifndef EMCV_PORT_PORT_H
 #define EMCV_PORT_PORT_H
 
@@ -24,9 +33,19 @@
 /// GLSL. Both round to the same fp32 value, 0x40490FDB.
 #define EMCV_PI 3.14159265358979323846
 
+#ifndef EMCV_PORT_CHECKS
+/// 1: the port checks its parameters (debug builds; see CHECKS above); 0 (default): no check is compiled.
+#define EMCV_PORT_CHECKS 0
+#endif
+
 #ifdef __cplusplus
 #include <cmath>
 #include <glm/glm.hpp>
+#if EMCV_PORT_CHECKS
+#include <emcv/detail/common.hpp>
+/// Under EMCV_PORT_CHECKS: the condition's value, after EMCV_ASSERT on it (C++); GLSL: the condition.
+#define EMCV_PORT_CHECK(cond) ::emcv::port::emcv_port_check((cond), "emcv port: parameter check failed: " #cond)
+#endif
 #ifndef EMCV_FN
 /// Function linkage: C++ `inline`, GLSL empty.
 #define EMCV_FN inline
@@ -80,10 +99,20 @@ using namespace glm;
 inline bool emcv_is_finite(float x) { return std::isfinite(x); }
 /// True when x is NaN.
 inline bool emcv_is_nan(float x) { return std::isnan(x); }
+#if EMCV_PORT_CHECKS
+/// EMCV_PORT_CHECK's C++ side: reports a failed parameter check through EMCV_ASSERT and returns ok.
+inline bool emcv_port_check(bool ok, const char* what) {
+    EMCV_ASSERT(ok, what);
+    return ok;
+}
+#endif
 } }
 #else
 bool emcv_is_finite(float x) { return !(isnan(x) || isinf(x)); }
 bool emcv_is_nan(float x) { return isnan(x); }
+#if EMCV_PORT_CHECKS
+#define EMCV_PORT_CHECK(cond) (cond)
+#endif
 #endif  // #ifdef __cplusplus
 
 EMCV_PORT_BEGIN

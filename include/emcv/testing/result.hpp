@@ -11,13 +11,14 @@
 
 namespace emcv::testing {
 
-/// The outcome of one statistical test: verdict, statistic, p-value, level and a one-line message.
+/// The outcome of one statistical test: verdict, statistic, p-value, level and a message.
 struct test_result {
     bool passed = false;   ///< p_value >= alpha: no evidence against the hypothesis at this level
     double statistic = 0;  ///< t, z, chi-square or the fitted convergence order (see the message)
     double p_value = 0;    ///< probability, under the hypothesis, of a statistic at least this extreme
     double alpha = 0;      ///< significance level actually used (after the Sidak correction)
-    std::string message;   ///< one line: the test, its statistic, p-value, alpha and verdict
+    std::string message;   ///< the test, its statistic, p-value, alpha and verdict on one line; a rejected
+                           ///< chi-square adds its worst cells on the lines below (docs/testing.md)
 
     /// True when the test passed (`passed`).
     explicit operator bool() const noexcept { return passed; }
