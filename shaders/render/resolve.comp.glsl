@@ -3,8 +3,10 @@
 // on display values (after the tonemap and the sRGB encoding, before the 8-bit store), where a colour's error is
 // what PSNR and a viewer see and where every value is bounded, so that one bright sample cannot hold the clip box
 // open. Per pixel: the current value and its 3x3 neighbourhood (one shared-memory tile with a one-pixel apron);
-// last frame's resolved value at the reprojected position (motion vectors, bilinear over the four texels whose
-// stored view depth shows this surface, emcv_resolve_same_surface; none: reset to the current value), clipped to
+// last frame's resolved value at the reprojected position (motion vectors; Catmull-Rom over the 4x4 texels around
+// it, as engines sample their history so that resampling it every frame does not blur it, each texel only
+// where its stored view depth shows this surface, emcv_resolve_same_surface; less than half of the kernel's
+// weight there: reset to the current value), clipped to
 // the neighbourhood's box in YCoCg and blended (include/emcv/port/resolve.h). The history keeps the resolved
 // value and the pixel's view depth (0 for the background, which is never blended: it does not change).
 #version 450 core
@@ -36,22 +38,25 @@ bool reprojected_history(ivec2 p, float depth, out vec3 history) {
     history = vec3(0.0f);
     vec3 world = emcv_render_world_position(p, depth);
     float expected_depth = (frame.prev_view_proj * vec4(world, 1.0f)).w;  // clip w = view depth
-    // Motion is current - previous in pixels: the previous position of p's centre, between four texel centres.
+    // Motion is current - previous in pixels: the previous position of p's centre, between texel centres.
     vec2 previous = vec2(p) + 0.5f - texelFetch(gbuffer_motion, p, 0).xy - 0.5f;
     ivec2 base = ivec2(floor(previous));
     vec2 t = previous - vec2(base);
+    vec4 wx = emcv_resolve_catmull_rom(t.x), wy = emcv_resolve_catmull_rom(t.y);
     float weight_sum = 0.0f;
-    for (int i = 0; i < 4; ++i) {
-        ivec2 offset = ivec2(i & 1, i >> 1);
-        float w = (offset.x == 1 ? t.x : 1.0f - t.x) * (offset.y == 1 ? t.y : 1.0f - t.y);
-        ivec2 q = base + offset;
-        if (w <= 0.0f || !emcv_render_on_screen(q)) continue;
-        vec4 texel = texelFetch(history_previous, q, 0);
-        if (!emcv_resolve_same_surface(texel.w, expected_depth)) continue;
-        history += w * texel.xyz;
-        weight_sum += w;
+    for (int j = 0; j < 4; ++j) {
+        for (int i = 0; i < 4; ++i) {
+            float w = wx[i] * wy[j];
+            ivec2 q = base + ivec2(i - 1, j - 1);
+            if (w == 0.0f || !emcv_render_on_screen(q)) continue;
+            vec4 texel = texelFetch(history_previous, q, 0);
+            if (!emcv_resolve_same_surface(texel.w, expected_depth)) continue;
+            history += w * texel.xyz;
+            weight_sum += w;
+        }
     }
-    if (!(weight_sum > 0.0f)) return false;
+    // Too little of the kernel's weight on this surface (a disocclusion, or only negative lobes): no history.
+    if (!(weight_sum > 0.5f)) return false;
     history /= weight_sum;
     return true;
 }

@@ -77,6 +77,14 @@ EMCV_FN vec3 emcv_resolve_clip(EMCV_IN(vec3) history, EMCV_IN(vec3) lo, EMCV_IN(
     return farthest > 1.0f ? centre + offset / farthest : history;
 }
 
+/// The Catmull-Rom weights of the four texels around a sample at fraction t in [0, 1) past the second texel
+/// (texels at -1, 0, 1, 2): the cubic that interpolates them with continuous slope, sharp enough that resampling
+/// a moving history every frame does not blur it as bilinear weights do. They sum to 1; t = 0 gives (0, 1, 0, 0).
+EMCV_FN vec4 emcv_resolve_catmull_rom(float t) {
+    return vec4(t * (-0.5f + t * (1.0f - 0.5f * t)), 1.0f + t * t * (-2.5f + 1.5f * t), t * (0.5f + t * (2.0f - 1.5f * t)),
+                t * t * (-0.5f + 0.5f * t));
+}
+
 /// One resolve step: the clipped history blended with the current value, current weight `weight`.
 EMCV_FN vec3 emcv_resolve_blend(EMCV_IN(vec3) clipped_history, EMCV_IN(vec3) current, float weight) {
     return mix(clipped_history, current, weight);
