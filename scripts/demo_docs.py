@@ -61,6 +61,12 @@ def run(demo, args, out_dir=None):
     return p.stdout, wall, shown([demo] + args + (["--out", "DIR"] if out_dir else []))
 
 
+def made_at():
+    """"made at commit <short hash>" of the checkout that built emcv-demo (the docs are committed after it)."""
+    p = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
+    return f"made at commit {p.stdout.strip()}" if p.returncode == 0 else "made outside a git checkout"
+
+
 def read_rows(out_dir):
     with open(os.path.join(out_dir, "metrics.csv"), newline="") as f:
         return list(csv.DictReader(f))
@@ -70,7 +76,7 @@ def part_passes(demo, tmp):
     blocks = []
     for scene in ["light-off", "no-sss"]:
         out, _, cmd = run(demo, ["--scene", scene, "--method", "diffuse,burley-16,separable-17", "--print-passes"])
-        blocks.append(f"`{cmd}`\n\n```text\n{out.rstrip()}\n```")
+        blocks.append(f"`{cmd}` ({made_at()})\n\n```text\n{out.rstrip()}\n```")
     return "\n\n".join(blocks)
 
 
@@ -78,13 +84,13 @@ def part_summary(demo, tmp):
     out_dir = os.path.join(tmp, "summary")
     out, wall, cmd = run(demo, SUMMARY_ARGS, out_dir)
     out = "\n".join(line for line in out.splitlines() if not line.startswith("wrote "))  # a temporary path
-    return (f"`{cmd}` (wall clock {wall:.0f} s for the run itself, on the machine described above)\n\n"
+    return (f"`{cmd}` (wall clock {wall:.0f} s for the run itself, on the machine described above; {made_at()})\n\n"
             f"```text\n{out.rstrip()}\n```")
 
 
 def part_summary_ci(demo, tmp):
     out, _, cmd = run(demo, SUMMARY_CI_ARGS)
-    return f"`{cmd}`\n\n```text\n{out.rstrip()}\n```"
+    return f"`{cmd}` ({made_at()})\n\n```text\n{out.rstrip()}\n```"
 
 
 SUMMARY_ROW = re.compile(r"^(\S+\s+\d+)\s+[0-9.]+\s+[0-9.]+\s+[0-9.]+(\s.*)$")
@@ -100,6 +106,7 @@ def masked(text):
             line = m.group(1) + " T T T" + re.sub(r"\s+", " ", m.group(2))
         line = re.sub(r"SSS pass time [0-9.]+x", "SSS pass time Tx", line)
         line = re.sub(r"\(wall clock [0-9]+ s", "(wall clock T s", line)
+        line = re.sub(r"made at commit [0-9a-f]+", "made at commit C", line)
         lines.append(line.rstrip())
     return "\n".join(lines).strip() + "\n"
 
@@ -144,7 +151,7 @@ def part_no_sss(demo, tmp):
             sss = any(float(r["sss_ms"]) > 0 for r in rows if r["method"] == m)
             lines.append(f"| {scene} | {m} | {'yes' if sss else 'no'} | {t[m][0]:.2f} | "
                          f"{t[m][0] / t['diffuse'][0]:.3f} | {t[m][1]:.2f} | {t[m][1] / t['diffuse'][1]:.3f} |")
-    return ("Commands (one run per scene, the methods side by side in it, frame by frame):\n\n" +
+    return (f"Commands (one run per scene, the methods side by side in it, frame by frame; {made_at()}):\n\n" +
             "\n".join(f"- `{c}`" for c in commands) + "\n\n" + "\n".join(lines) +
             f"\n\n1-minute load average before, between and after the runs: {', '.join(loads)} (2 cores).")
 
@@ -162,7 +169,8 @@ def part_images(demo, tmp):
     for name, frame, _, _ in made:
         table.append(f"| `{name}` | ![{name}](images/scene-{name}.png) frame {frame} |")
     commands = "\n".join(f"- `{cmd}` (frame {frame})" for name, frame, _, cmd in made)
-    text = ("Made by `/usr/bin/python3 scripts/demo_docs.py --only images`, which runs:\n\n" + commands + "\n\n" +
+    text = (f"Made by `/usr/bin/python3 scripts/demo_docs.py --only images` ({made_at()}), which runs:\n\n" +
+            commands + "\n\n" +
             "\n".join(table))
     return text, made
 
