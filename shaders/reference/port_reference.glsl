@@ -124,7 +124,8 @@ void main() {
     // The temporal resolve (resolve.h): the last displayed value as the history, clipped to a box around the
     // pixel itself (a one-pixel neighbourhood), blended; reset where its depth is not this surface's.
     const vec4 previous = imageLoad(display, texel);
-    vec3 history = emcv_rgb_to_ycocg(previous.rgb);
+    const vec4 taps = emcv_resolve_catmull_rom(fract(float(frame_index) * 0.25f));  // a resampled history's weights
+    vec3 history = emcv_rgb_to_ycocg(previous.rgb) * (taps.x + taps.y + taps.z + taps.w);
     vec3 lo, hi;
     emcv_resolve_clip_box(shown, shown * shown, 1.0f, shown, lo, hi);
     if (emcv_resolve_same_surface(previous.a, frame.camera.w))
