@@ -55,7 +55,7 @@ int any_int(input& in) {
 
 /// The documented requirements, written out here (not by calling the library).
 bool params_valid(const emcv::sampling_params& p) {
-    if (p.n_min < 1 || p.n_min > p.n_max) return false;
+    if (p.n_min < 1 || p.n_min > p.n_max || p.n_max > 1024) return false;
     const float eta = p.eta ? *p.eta : (p.estimator == emcv::sampling_estimator::cv ? EMCV_HISTORY_ETA_EMCM
                                                                                      : EMCV_HISTORY_ETA_MOVING);
     if (!(eta > 0.0f && eta <= 0.5f)) return false;
