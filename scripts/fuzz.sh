@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets with clang in build-fuzz/ and runs each for a bounded time.
-#   bash scripts/fuzz.sh [SECONDS per target, default 60] [TARGET...]   (targets: estimators scene; default all)
+#   bash scripts/fuzz.sh [SECONDS per target, default 60] [TARGET...]   (targets: estimators scene sampling; default all)
 # Each run starts from the repository corpus (tests/fuzz/corpus/<target>/, read only: the run's new inputs go
 # to build-fuzz/corpus/<target>/, kept between runs), with ASan + UBSan; a crash, hang (-timeout 10 s per
 # input), invariant violation or sanitizer report leaves the input in build-fuzz/artifacts/<target>/ and makes
@@ -12,7 +12,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
 case "$seconds" in ''|*[!0-9]*) echo "fuzz.sh: SECONDS must be a whole number, got '$seconds'" >&2; exit 2;; esac
-all_targets=(estimators scene)
+all_targets=(estimators scene sampling)
 targets=("${@:2}")
 [ ${#targets[@]} -gt 0 ] || targets=("${all_targets[@]}")
 for t in "${targets[@]}"; do

@@ -18,6 +18,7 @@ packages=(
   xvfb xauth                               # xvfb-run: the emcv-demo --window test
   python3 python3-matplotlib python3-numpy # plots in docs/
   python3-jsonschema                       # tests/scene: the scene schema against the built-in scenes
+  python3-dev python3-pybind11 python3-pytest   # the Python module emcv (docs/python.md) and its tests
 )
 
 missing=()

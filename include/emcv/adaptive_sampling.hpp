@@ -63,6 +63,11 @@ inline float sampling_default_eta(sampling_estimator e) noexcept {
     return e == sampling_estimator::cv ? EMCV_HISTORY_ETA_EMCM : EMCV_HISTORY_ETA_MOVING;
 }
 
+/// The largest n_max accepted: the budget's solve searches lambda for counts up to 2^10 (port/budget.h,
+/// emcv_budget_lambda_high_bits), the port's N_MAX range; a larger count is not exact in the fp32 arithmetic the
+/// counts are computed in once past 2^24 (a cap of 50332419 rounded to 50332420).
+inline constexpr int sampling_n_max_limit = 1024;
+
 /// The policy's parameters; check_sampling_params says which values are accepted. The defaults are the
 /// port's tunables (include/emcv/port/history.h), so an engine's CPU plan and the renderer's GPU passes agree
 /// unless told otherwise.
@@ -72,7 +77,7 @@ struct sampling_params {
     float target = EMCV_HISTORY_TARGET;  ///< quality target: the output variance aimed at, finite and > 0
     float budget = 8.0f;                 ///< budget mode: mean samples per pixel, in (0, n_max]
     int n_min = EMCV_HISTORY_N_MIN;      ///< fewest samples of a pixel whose kernel is wider than a pixel, >= 1
-    int n_max = EMCV_HISTORY_N_MAX;      ///< most samples of a pixel, >= n_min
+    int n_max = EMCV_HISTORY_N_MAX;      ///< most samples of a pixel, in [n_min, sampling_n_max_limit]
     std::optional<float> eta;            ///< history weight in (0, 0.5]; empty: sampling_default_eta(estimator)
 };
 
@@ -81,9 +86,9 @@ inline float sampling_eta(const sampling_params& p) noexcept {
     return p.eta ? *p.eta : sampling_default_eta(p.estimator);
 }
 
-/// Throws std::invalid_argument naming the first broken requirement: n_min >= 1, n_min <= n_max, eta in
-/// (0, 0.5], and the mode's own value (quality target: target finite and > 0; budget: budget finite, > 0 and
-/// <= n_max). The other mode's value is not read, so it is not checked.
+/// Throws std::invalid_argument naming the first broken requirement: n_min >= 1, n_min <= n_max,
+/// n_max <= sampling_n_max_limit (1024), eta in (0, 0.5], and the mode's own value (quality target: target
+/// finite and > 0; budget: budget finite, > 0 and <= n_max). The other mode's value is not read, so it is not checked.
 inline void check_sampling_params(const sampling_params& p) {
     constexpr const char* where = "emcv::sampling_params";
     detail::require_value(p.n_min >= 1, where, "n_min", p.n_min,
@@ -91,6 +96,8 @@ inline void check_sampling_params(const sampling_params& p) {
     if (p.n_min > p.n_max)
         detail::throw_invalid_value(where, "n_min", p.n_min,
                                     ("must not exceed n_max = " + std::to_string(p.n_max)).c_str());
+    detail::require_value(p.n_max <= sampling_n_max_limit, where, "n_max", p.n_max,
+                          "must not exceed 1024 (sampling_n_max_limit: the budget solve's range)");
     const float eta = sampling_eta(p);
     detail::require_value(eta > 0.0f && eta <= 0.5f, where, "eta", eta, "must lie in (0, 0.5]");
     if (p.mode == sampling_mode::quality_target)

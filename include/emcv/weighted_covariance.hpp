@@ -133,11 +133,16 @@ EMCV_ALWAYS_INLINE void comoment_step(T* mean, T* mean_low, T* covariance, T* co
         if (Accuracy == mean_accuracy::compensated) {
             T sum, error;
             two_sum(mu, w.r * di, sum, error);  // sum + error == mu + r d exactly
+            // TwoSum's own s - a overflows when mu and r d have opposite signs and r d is near max, although
+            // the sum does not (found by tests/fuzz): its error is then NaN. It is dropped: the mean is at
+            // the saturated scale there, where numerics.md 4.3 promises finiteness only.
+            error = std::isfinite(error) ? error : T(0);
             const T low_new = mean_low[i] + error;
             const T renormalised = sum + low_new;  // renormalise (fast two-sum): |low| <= ulp(mu) / 2
             const T low_renormalised = low_new - (renormalised - sum);
-            // mu + r d rounded past max (r near 1, x near max): saturate, drop the (NaN) low part
-            const bool above = std::isgreater(sum, largest), below = std::isless(sum, -largest);
+            // mu + r d (or its renormalised sum) rounded past max (r near 1, x near max): saturate, drop the
+            // low part
+            const bool above = std::isgreater(renormalised, largest), below = std::isless(renormalised, -largest);
             mu = above ? largest : (below ? -largest : renormalised);
             mean_low[i] = above || below ? T(0) : low_renormalised;
         } else {
@@ -164,6 +169,7 @@ EMCV_ALWAYS_INLINE void comoment_step(T* mean, T* mean_low, T* covariance, T* co
                 t = std::isgreater(t, largest) ? largest : (std::isless(t, -largest) ? -largest : t);
             T sum, error;
             two_sum(c, w.r * t, sum, error);  // sum + error == c + r t exactly
+            error = std::isfinite(error) ? error : T(0);  // TwoSum's s - a overflowed (see the mean above)
             const T low_new = low + error;
             const T v = sum + low_new;  // renormalise (fast two-sum)
             const T low_renormalised = low_new - (v - sum);

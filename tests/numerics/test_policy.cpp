@@ -212,6 +212,21 @@ TEMPLATE_TEST_CASE("a mean update that rounds past max saturates instead of stor
     CHECK(running.mean(0) == -top);
 }
 
+TEMPLATE_TEST_CASE("a compensated mean whose TwoSum overflows stays finite (fuzz finding)", "", float, double) {
+    // eta = 1 from mu just above max / 4 to x = -max: x - mu clamps to -max and mu + r d is finite, but
+    // TwoSum's own s - mu rounds past -max: its error, then the low part and the mean, were NaN
+    using T = TestType;
+    const T top = std::numeric_limits<T>::max();
+    emcv::compensated_emcm<T, 1> e(T(1));
+    for (T x : {top / T(4096) * T(1025), -top, T(0), T(1)}) {
+        e.push(x);
+        CHECK(std::isfinite(e.mean(0)));
+        CHECK(std::isfinite(e.state().mean_compensation[0]));
+        CHECK(e.variance(0) >= T(0));
+    }
+    CHECK(std::fabs(e.mean(0) - T(1)) <= top * std::numeric_limits<T>::epsilon());  // back near the samples
+}
+
 TEMPLATE_TEST_CASE("invalid eta, weight and decay are refused with std::invalid_argument", "", float, double) {
     using T = TestType;
     for (T eta : {T(0), T(-0.1), T(1.5), std::numeric_limits<T>::quiet_NaN()}) {

@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include <emcv/adaptive_sampling.hpp>
@@ -136,4 +137,26 @@ TEST_CASE("cv's update: a step of f and G by the same factor (f = alpha G) leave
     INFO("the 20 frames after: mean sigma^2 / before in [" << lowest << ", " << highest << "], scatter " << scatter);
     CHECK(lowest >= (1 - eta) * (1 - scatter));
     CHECK(highest <= 1 + scatter);
+}
+
+TEST_CASE("a batch push whose (1 - r) n d_f overflows keeps the cross comoment finite (fuzz finding)") {
+    // tests/fuzz (sampling) found it: mean (-1, 0) after one sample, then (f, G) = (FLT_MAX, 0) as a batch of 64
+    // at eta 0.2: (1 - r) n d_f = 0.8 * 64 * FLT_MAX overflowed to Inf, and Inf * d_G = Inf * 0 stored C_fG = NaN.
+    emcv::port::EmcvEmcm2 s = emcv::port::emcv_emcm2_init();
+    REQUIRE(emcv::port::emcv_emcm2_push_batch(s, glm::vec2(-1.0f, 0.0f), 0.2f, 64.0f));
+    const float top = std::numeric_limits<float>::max();
+    REQUIRE(emcv::port::emcv_emcm2_push_batch(s, glm::vec2(top, 0.0f), 0.2f, 64.0f));
+    CHECK(emcv::port::emcv_emcm2_valid(s));
+    CHECK(s.cov.y == 0.0f);    // d_G = 0: no cross term
+    CHECK(s.cov.x == top);     // the variance saturates
+    CHECK(s.cov.z == 0.0f);
+    // and the per-frame API keeps the pixel usable: a finite variance code, a count in range
+    emcv::sampling_params p;
+    p.estimator = emcv::sampling_estimator::cv;
+    CHECK(emcv::sampling_eta(p) == 0.2f);
+    float sigma2 = 0;
+    int n = 0;
+    emcv::plan_frame(p, &s, 1, 1, nullptr, nullptr, 0u, 0u, &sigma2, &n);
+    CHECK(sigma2 >= 0.0f);
+    CHECK(n == p.n_max);
 }

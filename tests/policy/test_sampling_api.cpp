@@ -42,6 +42,11 @@ TEST_CASE("sampling_params: each invalid value throws std::invalid_argument nami
     p = {};
     p.n_min = 9, p.n_max = 8;
     CHECK(mentions(message_of(p), "emcv::sampling_params: n_min = 9 must not exceed n_max = 8"));
+    p = {};
+    p.n_max = 1025;  // past the budget solve's range (a fuzz finding: 50332419 planned 50332420 samples)
+    CHECK(mentions(message_of(p), "emcv::sampling_params: n_max = 1025 must not exceed 1024"));
+    p.n_max = 1024;
+    CHECK_NOTHROW(emcv::check_sampling_params(p));
     for (const float eta : {0.0f, -0.1f, 0.51f, std::numeric_limits<float>::quiet_NaN()}) {
         p = {};
         p.eta = eta;

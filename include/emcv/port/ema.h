@@ -73,8 +73,12 @@ EMCV_FN float emcv_mean_step(EMCV_INOUT(float) mu, float x, float r) {
 
 /// One comoment: c' = c + r ((outer d_i) d_j - c) with outer = 1 - r, saturated to +-FLT_MAX (never Inf).
 /// Equal to (1 - r)(c + r d_i d_j), supp. Eq. 21, written as detail::comoment_step evaluates it.
+/// A batch's outer = (1 - r) n exceeds 1, so outer d_i can overflow where d_i did not: it saturates too, so
+/// that a d_j of 0 gives a cross comoment step of 0, not Inf * 0 = NaN (the identity on every finite value).
 EMCV_FN float emcv_comoment_step(float c, float r, float outer, float di, float dj) {
-    EMCV_PRECISE float cn = c + r * ((outer * di) * dj - c);
+    EMCV_PRECISE float scaled = outer * di;
+    scaled = clamp(scaled, -emcv_float_max(), emcv_float_max());
+    EMCV_PRECISE float cn = c + r * (scaled * dj - c);
     return clamp(cn, -emcv_float_max(), emcv_float_max());
 }
 
