@@ -22,18 +22,18 @@ def test_defaults_are_the_documented_starting_parameters():
 @pytest.mark.parametrize(
     "kwargs, message",
     [
-        ({"n_min": 0}, "n_min must be >= 1"),
-        ({"n_min": 9, "n_max": 8}, "n_min must not exceed n_max"),
-        ({"n_max": 1025}, "n_max must not exceed 1024"),
-        ({"eta": 0.0}, "eta must lie in (0, 0.5]"),
-        ({"eta": 0.6}, "eta must lie in (0, 0.5]"),
-        ({"eta": math.nan}, "eta must lie in (0, 0.5]"),
-        ({"target": 0.0}, "target must be finite and > 0"),
-        ({"target": math.nan}, "target must be finite and > 0"),
-        ({"target": math.inf}, "target must be finite and > 0"),
-        ({"mode": "budget", "budget": 0.0}, "budget must be finite, > 0 and <= n_max"),
-        ({"mode": "budget", "budget": 65.0}, "budget must be finite, > 0 and <= n_max"),
-        ({"mode": "budget", "budget": math.nan}, "budget must be finite, > 0 and <= n_max"),
+        ({"n_min": 0}, "emcv::sampling_params: n_min = 0 must be >= 1"),
+        ({"n_min": 9, "n_max": 8}, "n_min = 9 must not exceed n_max = 8"),
+        ({"n_max": 1025}, "n_max = 1025 must not exceed 1024"),
+        ({"eta": 0.0}, "eta = 0 must lie in (0, 0.5]"),
+        ({"eta": 0.6}, "eta = 0.6 must lie in (0, 0.5]"),
+        ({"eta": math.nan}, "eta = nan must lie in (0, 0.5]"),
+        ({"target": 0.0}, "target = 0 must be finite and > 0"),
+        ({"target": math.nan}, "target = nan must be finite and > 0"),
+        ({"target": math.inf}, "target = inf must be finite and > 0"),
+        ({"mode": "budget", "budget": 0.0}, "budget = 0 must be finite, > 0 and <= n_max"),
+        ({"mode": "budget", "budget": 65.0}, "budget = 65 must be finite, > 0 and <= n_max"),
+        ({"mode": "budget", "budget": math.nan}, "budget = nan must be finite, > 0 and <= n_max"),
         ({"estimator": "burley"}, "estimator must be 'spvg', 'cv' or 'cv_notex'"),
         ({"mode": "fast"}, "mode must be 'quality_target' or 'budget'"),
     ],
@@ -57,6 +57,6 @@ def test_a_refused_assignment_changes_nothing():
 def test_only_the_modes_own_value_is_checked():
     # a quality target does not read the budget: an out-of-range budget is accepted until the mode needs it
     p = emcv.SamplingParams(mode="quality_target", budget=1000.0)
-    with pytest.raises(ValueError, match="budget must be finite"):
+    with pytest.raises(ValueError, match="budget = 1000 must be finite"):
         p.mode = "budget"
     assert p.mode == "quality_target"
