@@ -118,8 +118,11 @@ int main(int argc, char** argv) {
             if (o.out)
                 std::cout << "wrote " << o.out->string()
                           << (o.no_frames ? "/{metrics.csv,metrics.json}\n"
-                                          : "/{metrics.csv,metrics.json,<method>/frame-*.png}"
-                                            " (spvg, cv, cv-notex: samples-*.png; cv: alpha-*.png)\n");
+                                          : std::string("/{metrics.csv,metrics.json,<method>/frame-*.png}") +
+                                                (o.resolve == resolve_mode::taa
+                                                     ? " (resolved-*.png but the reference's; "
+                                                     : " (") +
+                                                "spvg, cv, cv-notex: samples-*.png; cv: alpha-*.png)\n");
         }
         if (messenger.error_count() > 0)
             return fail(1, std::to_string(messenger.error_count()) + " OpenGL errors, the last: " +
