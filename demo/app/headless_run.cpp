@@ -151,14 +151,16 @@ run_result run_headless(const scene& s, const options& o, int frames, timing clo
                                                     view_of(ref_display), view_of(*ref_previous));
             // What the frame shows after its temporal resolve (the reference shows its raw, converged image).
             std::optional<gl::float_image> shown;
-            if (resolves) {
-                shown = is_reference ? ref_display : run.r.shown();
+            if (resolves && is_reference) {  // it shows its raw image: the raw columns, not recomputed on a copy
+                row.psnr_resolved_db = row.psnr_db;
+                row.psnr_sss_resolved_db = row.psnr_sss_db;
+                row.temporal_error_resolved = row.temporal_error;
+            } else if (resolves) {
+                shown = run.r.shown();
                 row.psnr_resolved_db = psnr_db(view_of(*shown), view_of(ref_display));
                 row.psnr_sss_resolved_db = psnr_db(view_of(*shown), view_of(ref_display), &sss);
-                // the reference's previous shown image is its previous display image
-                const std::optional<gl::float_image>& previous_shown = is_reference ? ref_previous : run.previous_shown;
-                if (previous_shown && ref_previous)
-                    row.temporal_error_resolved = temporal_error(view_of(*shown), view_of(*previous_shown),
+                if (run.previous_shown && ref_previous)
+                    row.temporal_error_resolved = temporal_error(view_of(*shown), view_of(*run.previous_shown),
                                                                  view_of(ref_display), view_of(*ref_previous));
             }
 
@@ -166,7 +168,7 @@ run_result run_headless(const scene& s, const options& o, int frames, timing clo
                 const fs::path dir = *o.out / run.m.name();
                 pending.push_back({dir / frame_file(frame, "png"), display});
                 if (o.exr) pending.push_back({dir / frame_file(frame, "exr"), linear});
-                if (resolves && !is_reference) pending.push_back({dir / frame_file(frame, "png", "resolved"), *shown});
+                if (shown) pending.push_back({dir / frame_file(frame, "png", "resolved"), *shown});
                 // The heatmaps the method's row asks for: N per pixel, the control-variate coefficient.
                 if (row_of(run.m).samples_heatmap)
                     pending.push_back({dir / frame_file(frame, "png", "samples"),

@@ -32,8 +32,6 @@ const std::vector<tunable>& tunables() {
          EMCV_RESOLVE_BLEND},
         {"EMCV_RESOLVE_CLIP_SIGMA", t::real, 0.0, 4.0, true, "temporal resolve: clip box half-width in std devs",
          EMCV_RESOLVE_CLIP_SIGMA},
-        {"EMCV_RESOLVE_DEPTH_TOLERANCE", t::real, 0.0, 1.0, true, "temporal resolve: relative depth for reuse",
-         EMCV_RESOLVE_DEPTH_TOLERANCE},
     };
     return all;
 }

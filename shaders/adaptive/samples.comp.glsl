@@ -16,7 +16,6 @@
 
 layout(local_size_x = EMCV_RENDER_TILE_SIZE, local_size_y = EMCV_RENDER_TILE_SIZE) in;
 
-layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_MOTION)) uniform sampler2D gbuffer_motion;
 layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_HISTORY_PREV_A)) uniform sampler2D history_prev_a;
 layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_HISTORY_PREV_B)) uniform sampler2D history_prev_b;
 layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_PREV_DEPTH)) uniform sampler2D prev_depth;
@@ -29,13 +28,10 @@ layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_PREV_MATERIAL)) uniform usampler2D 
 bool emcv_adaptive_reproject(ivec2 p, uint material, out vec4 a, out vec4 b) {
     a = vec4(0.0f);
     b = vec4(0.0f);
-    // Motion is current - previous in pixels; the previous position of p's centre, point-sampled.
-    vec2 previous = vec2(p) + 0.5f - texelFetch(gbuffer_motion, p, 0).xy;
-    ivec2 q = ivec2(floor(previous));
+    // The previous position of p's centre, point-sampled.
+    ivec2 q = ivec2(floor(emcv_render_previous_position(p)));
     if (!emcv_render_on_screen(q)) return false;
-    float z = emcv_render_depth(p);
-    vec3 world = emcv_render_world_position(p, z);
-    float expected_prev_depth = (frame.prev_view_proj * vec4(world, 1.0f)).w;  // clip w = view depth
+    float expected_prev_depth = emcv_render_previous_depth(p, emcv_render_depth(p));
     bool same_surface = emcv_history_reusable(material, texelFetch(prev_material, q, 0).x, expected_prev_depth,
                                               abs(texelFetch(prev_depth, q, 0).x), texelFetch(gbuffer_normal, p, 0).xyz,
                                               texelFetch(prev_normal, q, 0).xyz);

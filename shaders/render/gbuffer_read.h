@@ -11,6 +11,7 @@ layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_ALBEDO)) uniform sampler2D gbuffer_al
 layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_MATERIAL)) uniform usampler2D gbuffer_material;
 layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_DIFFUSE)) uniform sampler2D lit_diffuse;
 layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_SPECULAR)) uniform sampler2D lit_specular;
+layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_MOTION)) uniform sampler2D gbuffer_motion;
 
 bool emcv_render_on_screen(ivec2 p) {
     return p.x >= 0 && p.y >= 0 && p.x < int(frame.viewport.x) && p.y < int(frame.viewport.y);
@@ -24,6 +25,16 @@ float emcv_render_depth(ivec2 p) { return abs(texelFetch(gbuffer_depth, p, 0).x)
 float emcv_render_scattering_depth(ivec2 q) {
     if (!emcv_render_on_screen(q)) return 0.0f;
     return max(texelFetch(gbuffer_depth, q, 0).x, 0.0f);
+}
+
+/// Where p's centre was in the previous frame, in pixels (the motion target holds current - previous): what the
+/// passes that keep a history (the adaptive samples pass, the resolve) reproject from.
+vec2 emcv_render_previous_position(ivec2 p) { return vec2(p) + 0.5f - texelFetch(gbuffer_motion, p, 0).xy; }
+/// The view depth that the surface seen at p (view depth z) had in the previous frame: its clip w under the
+/// previous camera (objects do not move in the scene model). A history texel whose stored depth differs from it
+/// shows another surface.
+float emcv_render_previous_depth(ivec2 p, float z) {
+    return (frame.prev_view_proj * vec4(emcv_render_world_position(p, z), 1.0f)).w;
 }
 
 #endif  // #ifndef EMCV_RENDER_GBUFFER_READ_H

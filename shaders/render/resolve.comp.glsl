@@ -17,7 +17,6 @@
 
 layout(local_size_x = EMCV_RENDER_TILE_SIZE, local_size_y = EMCV_RENDER_TILE_SIZE) in;
 
-layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_MOTION)) uniform sampler2D gbuffer_motion;
 layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_RESOLVE_CURRENT)) uniform sampler2D current_linear;
 layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_RESOLVE_HISTORY)) uniform sampler2D history_previous;
 layout(rgba32f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_RESOLVE_HISTORY)) writeonly uniform image2D history_out;
@@ -36,10 +35,9 @@ vec3 display_ycocg(ivec2 q) {
 /// Last frame's resolved value (YCoCg) at this surface's previous position, or false where none shows it.
 bool reprojected_history(ivec2 p, float depth, out vec3 history) {
     history = vec3(0.0f);
-    vec3 world = emcv_render_world_position(p, depth);
-    float expected_depth = (frame.prev_view_proj * vec4(world, 1.0f)).w;  // clip w = view depth
-    // Motion is current - previous in pixels: the previous position of p's centre, between texel centres.
-    vec2 previous = vec2(p) + 0.5f - texelFetch(gbuffer_motion, p, 0).xy - 0.5f;
+    float expected_depth = emcv_render_previous_depth(p, depth);
+    // The previous position of p's centre, in texel-centre coordinates (between four texel centres).
+    vec2 previous = emcv_render_previous_position(p) - 0.5f;
     ivec2 base = ivec2(floor(previous));
     vec2 t = previous - vec2(base);
     vec4 wx = emcv_resolve_catmull_rom(t.x), wy = emcv_resolve_catmull_rom(t.y);

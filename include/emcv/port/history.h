@@ -137,13 +137,20 @@ EMCV_FN vec4 emcv_history_encode_emcm2_cov(EMCV_IN(EmcvEmcm2) s) {
 /// cv history, second texture: the means (mu_f, mu_G).
 EMCV_FN vec2 emcv_history_encode_emcm2_means(EMCV_IN(EmcvEmcm2) s) { return s.mean; }
 
+/// Whether a previous frame's texel at linear depth `prev_depth` shows the surface expected there at
+/// `expected_prev_depth`: within 5% of it (false for NaN). Every history that is reprojected uses it (the
+/// adaptive history below, the temporal resolve's, emcv/port/resolve.h).
+EMCV_FN bool emcv_history_same_depth(float prev_depth, float expected_prev_depth) {
+    return abs(prev_depth - expected_prev_depth) <= 0.05f * expected_prev_depth;
+}
+
 /// Reprojection test (SPVG's reset on failed reprojection): the previous frame's pixel under the reprojected
 /// position must show the same material, a linear depth within 5% of where this surface point was then, and a
 /// normal within ~25 degrees. Off-screen positions are the caller's test.
 EMCV_FN bool emcv_history_reusable(uint material, uint prev_material, float expected_prev_depth, float prev_depth,
                                    EMCV_IN(vec3) normal, EMCV_IN(vec3) prev_normal) {
     if (material == 0u || material != prev_material) return false;
-    if (!(abs(prev_depth - expected_prev_depth) <= 0.05f * expected_prev_depth)) return false;
+    if (!emcv_history_same_depth(prev_depth, expected_prev_depth)) return false;
     return dot(normal, prev_normal) >= 0.9f;
 }
 

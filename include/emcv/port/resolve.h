@@ -9,11 +9,10 @@
 // TUNABLES   EMCV_RESOLVE_BLEND ........ weight of the current frame in the blend, (0, 1]; default 0.1
 //            EMCV_RESOLVE_CLIP_SIGMA ... half-width of the clip box in neighbourhood standard deviations,
 //                                        (0, 4]; default 1
-//            EMCV_RESOLVE_DEPTH_TOLERANCE  relative view-depth difference beyond which a history texel is
-//                                        another surface (reset on disocclusion), (0, 1]; default 0.05
 #ifndef EMCV_PORT_RESOLVE_H
 #define EMCV_PORT_RESOLVE_H
 
+#include "history.h"
 #include "port.h"
 
 /// Weight of the current frame in the exponential blend. At 0.1 a converged history averages about
@@ -28,12 +27,6 @@
 /// (Salvi 2016's variance clipping, gamma = 1). Range (0, 4].
 #ifndef EMCV_RESOLVE_CLIP_SIGMA
 #define EMCV_RESOLVE_CLIP_SIGMA 1.0f
-#endif
-
-/// A history texel belongs to this pixel's surface when its view depth is within this fraction of where the
-/// surface was in the previous frame (the adaptive history's test, emcv_history_reusable). Range (0, 1].
-#ifndef EMCV_RESOLVE_DEPTH_TOLERANCE
-#define EMCV_RESOLVE_DEPTH_TOLERANCE 0.05f
 #endif
 
 EMCV_PORT_BEGIN
@@ -91,9 +84,10 @@ EMCV_FN vec3 emcv_resolve_blend(EMCV_IN(vec3) clipped_history, EMCV_IN(vec3) cur
 }
 
 /// Whether a history texel stored at view depth `history_depth` shows the surface that was at view depth
-/// `expected_depth` in the previous frame (0 marks a texel without history: the background, or none yet).
+/// `expected_depth` in the previous frame: the adaptive history's depth test (emcv_history_same_depth), where 0
+/// marks a texel without history (the background, or none yet).
 EMCV_FN bool emcv_resolve_same_surface(float history_depth, float expected_depth) {
-    return history_depth > 0.0f && abs(history_depth - expected_depth) <= float(EMCV_RESOLVE_DEPTH_TOLERANCE) * expected_depth;
+    return history_depth > 0.0f && emcv_history_same_depth(history_depth, expected_depth);
 }
 
 EMCV_PORT_END
