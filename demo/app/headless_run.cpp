@@ -178,7 +178,8 @@ run_result run_headless(const scene& s, const options& o, int frames, timing clo
                 if (shown) pending.push_back({dir / frame_file(frame, "png", "resolved"), *shown, {}});
                 // The heatmaps the method's row asks for, each with its legend: N per pixel, the control-variate
                 // coefficient.
-                const auto add_heatmap = [&](const char* stem, const gl::float_image& values, const heatmap_scale& scale) {
+                const auto add_heatmap = [&](const char* stem, const gl::float_image& values,
+                                             const heatmap_scale& scale) {
                     heatmap_png png = heatmap_with_legend(values, scale);
                     result.heatmap_text_missing = result.heatmap_text_missing || !png.text_drawn;
                     pending.push_back({dir / frame_file(frame, "png", stem), std::move(png.image),

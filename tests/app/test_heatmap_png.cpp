@@ -43,8 +43,9 @@ float_image uniform(int width, int height, float value) {
 
 /// RGB of the pixel at column x, row y counted from the top (read_image keeps GL's bottom-first rows).
 rgb at(const float_image& image, int x, int y_from_top) {
-    const std::size_t p = (static_cast<std::size_t>(image.height - 1 - y_from_top) * static_cast<std::size_t>(image.width) +
-                           static_cast<std::size_t>(x)) * static_cast<std::size_t>(image.channels);
+    const std::size_t row = static_cast<std::size_t>(image.height - 1 - y_from_top);
+    const std::size_t p = (row * static_cast<std::size_t>(image.width) + static_cast<std::size_t>(x)) *
+                          static_cast<std::size_t>(image.channels);
     return {image.pixels[p], image.pixels[p + 1], image.pixels[p + 2]};
 }
 
@@ -63,7 +64,8 @@ float_image written(const emcv::demo::app::heatmap_png& png, const std::string& 
 
 }  // namespace
 
-TEST_CASE("a heatmap PNG is its heatmap above a 32-row legend, at least 192 pixels wide", "[app][heatmap]") {
+TEST_CASE("a heatmap PNG is its heatmap above a 32-row legend, at least 192 pixels wide",
+          "[app][heatmap][image-files]") {
     using namespace emcv::demo::app;
     // Top-left pixel at the top of the scale, the rest 0: the heatmap keeps its place and orientation.
     float_image values = uniform(64, 64, 0.0f);
@@ -82,7 +84,7 @@ TEST_CASE("a heatmap PNG is its heatmap above a 32-row legend, at least 192 pixe
 }
 
 TEST_CASE("the colour bar follows the colour map at its ticks, black at the left, red at the right",
-          "[app][heatmap]") {
+          "[app][heatmap][image-files]") {
     using namespace emcv::demo::app;
     for (int width : {64, 300}) {
         INFO("heatmap width " << width);
@@ -106,7 +108,8 @@ TEST_CASE("the colour bar follows the colour map at its ticks, black at the left
     }
 }
 
-TEST_CASE("the scale text is drawn below the ticks, and left out when the font is missing", "[app][heatmap]") {
+TEST_CASE("the scale text is drawn below the ticks, and left out when the font is missing",
+          "[app][heatmap][image-files]") {
     using namespace emcv::demo::app;
     const auto lit_in_text_band = [](const float_image& image) {
         int lit = 0;
@@ -126,7 +129,8 @@ TEST_CASE("the scale text is drawn below the ticks, and left out when the font i
     CHECK(without.description == with_font.description);
 }
 
-TEST_CASE("a heatmap PNG's ImageDescription names the quantity, its range and the tick colours", "[app][heatmap]") {
+TEST_CASE("a heatmap PNG's ImageDescription names the quantity, its range and the tick colours",
+          "[app][heatmap][image-files]") {
     using namespace emcv::demo::app;
     const fs::path samples = scratch("samples-description.png");
     const auto s = heatmap_with_legend(uniform(64, 64, 8.0f), samples_heatmap_scale);
