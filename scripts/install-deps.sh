@@ -10,6 +10,7 @@ packages=(
   libglm-dev libglfw3-dev                  # GLM, GLFW (window only on request)
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev   # headless GL (Mesa llvmpipe)
   libopenimageio-dev                       # EXR / PNG output
+  fonts-dejavu-core                        # the scale text of emcv-demo's heatmap PNGs (OIIO render_text)
   nlohmann-json3-dev                       # scene files, JSON output
   libassimp-dev libmeshoptimizer-dev       # mesh files in scenes; decimating the demo assets
   libbenchmark-dev libboost-dev            # emcv-bench and the Boost.Accumulators comparison

@@ -47,9 +47,16 @@ void make_output_directory(const fs::path& dir) {
     if (ec) throw output_error("cannot create directory '" + dir.string() + "': " + ec.message());
 }
 
-void write_frame(const fs::path& path, const gl::float_image& image) {
+/// An image file to write once every method of the frame passed its checks.
+struct pending_file {
+    fs::path path;
+    gl::float_image image;
+    std::string description;  ///< the file's ImageDescription ("" for none)
+};
+
+void write_frame(const pending_file& file) {
     try {
-        gl::write_image(path, image);
+        gl::write_image(file.path, file.image, file.description);
     } catch (const gl::image_error& e) {
         throw output_error(e.what());
     }
@@ -128,7 +135,7 @@ run_result run_headless(const scene& s, const options& o, int frames, timing clo
         // after the reference's readback: position in the frame must not show up as a difference in frame_ms
         // between methods (docs/demo.md, no-sss against diffuse). Rows keep the run order.
         std::vector<metrics_row> frame_rows(runs.size());
-        std::vector<std::pair<fs::path, gl::float_image>> pending;  // written once every method passed its checks
+        std::vector<pending_file> pending;
         for (std::size_t k = 0; k < runs.size(); ++k) {
             const std::size_t i = (k + static_cast<std::size_t>(frame)) % runs.size();
             method_run& run = runs[i];
@@ -166,16 +173,20 @@ run_result run_headless(const scene& s, const options& o, int frames, timing clo
 
             if (o.out && !o.no_frames) {
                 const fs::path dir = *o.out / run.m.name();
-                pending.push_back({dir / frame_file(frame, "png"), display});
-                if (o.exr) pending.push_back({dir / frame_file(frame, "exr"), linear});
-                if (shown) pending.push_back({dir / frame_file(frame, "png", "resolved"), *shown});
-                // The heatmaps the method's row asks for: N per pixel, the control-variate coefficient.
-                if (row_of(run.m).samples_heatmap)
-                    pending.push_back({dir / frame_file(frame, "png", "samples"),
-                                       sample_heatmap(run.r.sample_counts(), samples_heatmap_max)});
-                if (row_of(run.m).alpha_heatmap)
-                    pending.push_back({dir / frame_file(frame, "png", "alpha"),
-                                       sample_heatmap(run.r.cv_alpha(), alpha_heatmap_max)});
+                pending.push_back({dir / frame_file(frame, "png"), display, {}});
+                if (o.exr) pending.push_back({dir / frame_file(frame, "exr"), linear, {}});
+                if (shown) pending.push_back({dir / frame_file(frame, "png", "resolved"), *shown, {}});
+                // The heatmaps the method's row asks for, each with its legend: N per pixel, the control-variate
+                // coefficient.
+                const auto add_heatmap = [&](const char* stem, const gl::float_image& values,
+                                             const heatmap_scale& scale) {
+                    heatmap_png png = heatmap_with_legend(values, scale);
+                    result.heatmap_text_missing = result.heatmap_text_missing || !png.text_drawn;
+                    pending.push_back({dir / frame_file(frame, "png", stem), std::move(png.image),
+                                       std::move(png.description)});
+                };
+                if (row_of(run.m).samples_heatmap) add_heatmap("samples", run.r.sample_counts(), samples_heatmap_scale);
+                if (row_of(run.m).alpha_heatmap) add_heatmap("alpha", run.r.cv_alpha(), alpha_heatmap_scale);
             }
             if (!is_reference) {
                 run.previous_display = std::move(display);
@@ -189,7 +200,7 @@ run_result run_headless(const scene& s, const options& o, int frames, timing clo
                 if (!o.no_frames)
                     for (const method_run& run : runs) make_output_directory(*o.out / run.m.name());
             }
-            for (const auto& [path, image] : pending) write_frame(path, image);
+            for (const pending_file& file : pending) write_frame(file);
         }
         // The reference's previous image is replaced last: the others compared against the old one above.
         ref.previous_display = std::move(ref_display);

@@ -14,6 +14,7 @@
 #include "gl/context.hpp"
 #include "gl/debug.hpp"
 #include "headless_run.hpp"
+#include "heatmap.hpp"
 #include "render/tunables.hpp"
 #include "light_change.hpp"
 #include "listings.hpp"
@@ -122,7 +123,13 @@ int main(int argc, char** argv) {
                                                 (o.resolve == resolve_mode::taa
                                                      ? " (resolved-*.png but the reference's; "
                                                      : " (") +
-                                                "spvg, cv, cv-notex: samples-*.png; cv: alpha-*.png)\n");
+                                                "spvg, cv, cv-notex: samples-*.png, " +
+                                                heatmap_scale_text(samples_heatmap_scale) + "; cv: alpha-*.png, " +
+                                                heatmap_scale_text(alpha_heatmap_scale) + ")\n");
+            if (result.heatmap_text_missing)
+                std::cerr << "emcv-demo: the heatmaps' legends have no text: font " << heatmap_font
+                          << " not found (scripts/install-deps.sh installs fonts-dejavu-core); their colour bars "
+                             "and each PNG's ImageDescription still give the scale\n";
         }
         if (messenger.error_count() > 0)
             return fail(1, std::to_string(messenger.error_count()) + " OpenGL errors, the last: " +

@@ -107,8 +107,9 @@ std::string title(const scene& s, const renderer& r, int frame, const frame_stat
     char text[256];
     std::snprintf(text, sizeof text, "emcv-demo  %s  %s  frame %d  sss %.2f ms  frame %.2f ms  spp %.1f%s",
                   s.name.c_str(), r.current_method().name().c_str(), frame, stats.times.sss_ms, stats.times.frame_ms,
-                  stats.mean_spp, heatmap ? "  [heatmap]" : "");
-    return text;
+                  stats.mean_spp, heatmap ? "  [heatmap " : "");
+    // The heatmap's scale in the title: the window shows the colours without a legend.
+    return heatmap ? text + heatmap_scale_text(samples_heatmap_scale) + ", black to red]" : text;
 }
 
 }  // namespace
@@ -165,7 +166,7 @@ int run_window(gl::context& ctx, const scene& s, const options& o, std::optional
         }
         const frame_stats stats = r.render(frame);
         if (state.heatmap) {
-            const gl::float_image colours = sample_heatmap(r.sample_counts(), samples_heatmap_max);
+            const gl::float_image colours = sample_heatmap(r.sample_counts(), samples_heatmap_scale);
             glTextureSubImage2D(heat.texture.id(), 0, 0, 0, o.width, o.height, GL_RGBA, GL_FLOAT,
                                 colours.pixels.data());
             blit_to_window(heat, o.width, o.height);

@@ -2,6 +2,7 @@
 #include "image_file.hpp"
 
 #ifndef EMCV_IMAGE_NO_FILES
+#include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 #endif
 
@@ -19,6 +20,15 @@ std::string lower_extension(const std::filesystem::path& p) {
     return e;
 }
 
+/// The rows in the other order: GL's bottom-up rows to an image file's top-down ones, and back.
+std::vector<float> flip_rows(const std::vector<float>& pixels, std::size_t row, int height) {
+    std::vector<float> out(pixels.size());
+    for (int y = 0; y < height; ++y)
+        std::copy_n(pixels.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(height - 1 - y) * row), row,
+                    out.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(y) * row));
+    return out;
+}
+
 }  // namespace
 #endif  // #ifndef EMCV_IMAGE_NO_FILES
 
@@ -30,15 +40,22 @@ std::uint8_t quantise_unorm8(float value) noexcept {
 #ifdef EMCV_IMAGE_NO_FILES
 // Built with -DEMCV_GL_IMAGE_FILES=OFF (a build for a machine without OpenImageIO, e.g. GPU timing runs that
 // write metrics only): every image file operation fails with a line that says why.
-void write_image(const std::filesystem::path& path, const float_image&) {
+void write_image(const std::filesystem::path& path, const float_image&, const std::string&) {
     throw image_error("write_image " + path.string() + ": built without OpenImageIO (EMCV_GL_IMAGE_FILES=OFF)");
 }
 
 float_image read_image(const std::filesystem::path& path) {
     throw image_error("read_image " + path.string() + ": built without OpenImageIO (EMCV_GL_IMAGE_FILES=OFF)");
 }
+
+std::string read_image_description(const std::filesystem::path& path) {
+    throw image_error("read_image_description " + path.string() +
+                      ": built without OpenImageIO (EMCV_GL_IMAGE_FILES=OFF)");
+}
+
+bool draw_text(float_image&, int, int, const std::string&, int, int, const std::string&) { return false; }
 #else
-void write_image(const std::filesystem::path& path, const float_image& image) {
+void write_image(const std::filesystem::path& path, const float_image& image, const std::string& description) {
     const std::size_t expected =
         static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) *
         static_cast<std::size_t>(image.channels);
@@ -54,14 +71,11 @@ void write_image(const std::filesystem::path& path, const float_image& image) {
     OIIO::ImageSpec spec(image.width, image.height, image.channels, png ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
     // Our pixels are straight (unassociated) alpha; without this OIIO would un-premultiply PNG data on write.
     spec.attribute("oiio:UnassociatedAlpha", 1);
+    if (!description.empty()) spec.attribute("ImageDescription", description);
     if (!out->open(tmp.string(), spec))
         throw image_error("write_image " + path.string() + ": " + out->geterror());
     const std::size_t row = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.channels);
-    // GL rows are bottom-up; image files are top-down.
-    std::vector<float> flipped(expected);
-    for (int y = 0; y < image.height; ++y)
-        std::copy_n(image.pixels.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(image.height - 1 - y) * row),
-                    row, flipped.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(y) * row));
+    const std::vector<float> flipped = flip_rows(image.pixels, row, image.height);  // GL rows are bottom-up
     bool ok = false;
     if (png) {
         std::vector<std::uint8_t> bytes(expected);
@@ -98,11 +112,40 @@ float_image read_image(const std::filesystem::path& path) {
     std::vector<float> top_down(row * static_cast<std::size_t>(img.height));
     if (!in->read_image(0, 0, 0, img.channels, OIIO::TypeDesc::FLOAT, top_down.data()))
         throw image_error("read_image " + path.string() + ": " + in->geterror());
-    img.pixels.resize(top_down.size());
-    for (int y = 0; y < img.height; ++y)
-        std::copy_n(top_down.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(img.height - 1 - y) * row),
-                    row, img.pixels.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(y) * row));
+    img.pixels = flip_rows(top_down, row, img.height);
     return img;
+}
+
+std::string read_image_description(const std::filesystem::path& path) {
+    auto in = OIIO::ImageInput::open(path.string());
+    if (!in) throw image_error("read_image_description " + path.string() + ": " + OIIO::geterror());
+    return in->spec().get_string_attribute("ImageDescription");
+}
+
+bool draw_text(float_image& image, int x, int baseline_from_top, const std::string& text, int font_px, int max_width,
+               const std::string& font) {
+    const std::size_t row = static_cast<std::size_t>(image.width) * 4u;
+    if (image.channels != 4 || image.width <= 0 || image.height <= 0 ||
+        image.pixels.size() != row * static_cast<std::size_t>(image.height))
+        throw image_error("draw_text: the image must be RGBA with width x height x 4 pixels");
+    int px = font_px;
+    OIIO::ROI extent = OIIO::ImageBufAlgo::text_size(text, px, font);
+    if (!extent.defined()) {
+        (void)OIIO::geterror();  // "font not found": ours to report, not OIIO's to keep
+        return false;
+    }
+    while (px > 1 && extent.width() > max_width) extent = OIIO::ImageBufAlgo::text_size(text, --px, font);
+    std::vector<float> top_down = flip_rows(image.pixels, row, image.height);
+    OIIO::ImageBuf buffer(OIIO::ImageSpec(image.width, image.height, 4, OIIO::TypeDesc::FLOAT));
+    buffer.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, top_down.data());
+    const float white[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+    if (!OIIO::ImageBufAlgo::render_text(buffer, x, baseline_from_top, text, px, font, white)) {
+        (void)buffer.geterror();
+        return false;
+    }
+    buffer.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, top_down.data());
+    image.pixels = flip_rows(top_down, row, image.height);
+    return true;
 }
 #endif  // #ifdef EMCV_IMAGE_NO_FILES
 

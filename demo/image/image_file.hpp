@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace emcv::image {
@@ -29,11 +30,23 @@ std::uint8_t quantise_unorm8(float value) noexcept;
 
 /// Writes the image, the format following the extension: ".exr" the floats unchanged, ".png" every channel
 /// (alpha included) through quantise_unorm8, no transfer function. Writes to a temporary sibling and renames
-/// it, so a failure leaves no half-written file. Throws image_error.
-void write_image(const std::filesystem::path& path, const float_image& image);
+/// it, so a failure leaves no half-written file. A non-empty `description` is stored as the file's
+/// "ImageDescription" (what the image shows; read_image_description returns it). Throws image_error.
+void write_image(const std::filesystem::path& path, const float_image& image, const std::string& description = {});
 
 /// Reads any image OpenImageIO reads, as floats (bottom row first, like write_image expects), values as stored:
 /// 8-bit channels become n / 255, no transfer function. Throws image_error.
 float_image read_image(const std::filesystem::path& path);
+
+/// The "ImageDescription" a file stores, "" when it has none. Throws image_error.
+std::string read_image_description(const std::filesystem::path& path);
+
+/// Draws one line of `text` in opaque white onto `image` (RGBA, bottom row first), its baseline's left end at
+/// column `x` and at row `baseline_from_top` counted from the image's top. The font is `font_px` pixels tall,
+/// or smaller where the text would be wider than `max_width`. `font` is a font name OpenImageIO searches for
+/// (its font directories and /usr/share/fonts) or a font file's path. Returns false, the image unchanged, when
+/// the font cannot be found (or this build has no OpenImageIO).
+bool draw_text(float_image& image, int x, int baseline_from_top, const std::string& text, int font_px, int max_width,
+               const std::string& font);
 
 }  // namespace emcv::image

@@ -439,21 +439,26 @@ TEST_CASE("the window with a bad scripted key: one line, non-zero exit", "[app][
 
 namespace {
 
-/// Distinct RGB colours of a heatmap PNG, over all pixels and over the pixels that are not black (N > 0).
+/// Distinct RGB colours of a heatmap PNG's heatmap (its top-left `size` x `size` pixels, above the legend),
+/// over all its pixels and over the pixels that are not black (N > 0).
 struct colour_counts {
     std::size_t all = 0, non_black = 0;
 };
 
-colour_counts distinct_colours(const fs::path& png) {
+colour_counts distinct_colours(const fs::path& png, int size) {
     const emcv::gl::float_image image = emcv::gl::read_image(png);
     std::set<std::vector<float>> all, non_black;
     const auto channels = static_cast<std::size_t>(image.channels);
-    for (std::size_t p = 0; p + channels <= image.pixels.size(); p += channels) {
-        const std::vector<float> rgb(image.pixels.begin() + static_cast<std::ptrdiff_t>(p),
-                                     image.pixels.begin() + static_cast<std::ptrdiff_t>(p + 3));
-        all.insert(rgb);
-        if (rgb[0] + rgb[1] + rgb[2] > 0.0f) non_black.insert(rgb);
-    }
+    for (int y = image.height - size; y < image.height; ++y)  // rows are bottom first: the top ones are last
+        for (int x = 0; x < size; ++x) {
+            const std::size_t p =
+                (static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) + static_cast<std::size_t>(x)) *
+                channels;
+            const std::vector<float> rgb(image.pixels.begin() + static_cast<std::ptrdiff_t>(p),
+                                         image.pixels.begin() + static_cast<std::ptrdiff_t>(p + 3));
+            all.insert(rgb);
+            if (rgb[0] + rgb[1] + rgb[2] > 0.0f) non_black.insert(rgb);
+        }
     return {all.size(), non_black.size()};
 }
 
@@ -480,9 +485,23 @@ TEST_CASE("adaptive methods write N heatmaps and cv alpha heatmaps and a static 
     // pixels all sit at the shared floor of 8 at this size: only the background differs.)
     for (const char* m : {"spvg", "cv"}) {
         INFO(m);
-        CHECK(distinct_colours(out / m / "samples-0003.png").all >= 2);
+        CHECK(distinct_colours(out / m / "samples-0003.png", 48).all >= 2);
     }
-    CHECK(distinct_colours(out / "spvg" / "samples-0003.png").non_black >= 2);
+    CHECK(distinct_colours(out / "spvg" / "samples-0003.png", 48).non_black >= 2);
+    // Each heatmap explains itself (docs/demo.md, Outputs): a 32-row legend below the 48x48 heatmap, the legend
+    // at least 192 pixels wide, the scale in the file's ImageDescription and in the line naming the files.
+    for (const fs::path& png : {out / "spvg" / "samples-0003.png", out / "cv" / "alpha-0003.png"}) {
+        INFO(png);
+        const emcv::gl::float_image image = emcv::gl::read_image(png);
+        CHECK(image.width == 192);
+        CHECK(image.height == 48 + 32);
+    }
+    CHECK(emcv::image::read_image_description(out / "spvg" / "samples-0003.png").find("N 0..64 (samples per pixel)") !=
+          std::string::npos);
+    CHECK(emcv::image::read_image_description(out / "cv" / "alpha-0003.png").find("alpha 0..2") != std::string::npos);
+    CHECK(emcv::image::read_image_description(out / "spvg" / "frame-0003.png").empty());
+    CHECK(r.out.find("samples-*.png, N 0..64 (samples per pixel); cv: alpha-*.png, alpha 0..2)") != std::string::npos);
+    CHECK(r.err.find("legends have no text") == std::string::npos);
     // The static light never changes: no cv vs spvg line.
     CHECK(r.out.find("cv vs spvg") == std::string::npos);
 }
