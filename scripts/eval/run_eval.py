@@ -1199,7 +1199,8 @@ def parse_args(argv):
     p.add_argument("--plots-only", action="store_true", help="the same as --merge")
     p.add_argument("--resume", action="store_true", help="run only the selected jobs whose raw file is missing "
                                                          "or was made by another command")
-    p.add_argument("--list", action="store_true", help="print the job list (index, stage/name, command) and exit")
+    p.add_argument("--list", action="store_true", help="print the job list (index, stage/name, kind, command; "
+                                                      "with --shard, that shard's) and exit")
     p.add_argument("--quick", action="store_true", help="64x64, light-off and flicker, one seed: for checks")
     p.add_argument("--check-determinism", action="store_true",
                    help="run the --quick quality jobs with --jobs 1 and --jobs 2 into two temporary raw folders "
@@ -1244,8 +1245,13 @@ def check_tools(build, jobs):
             die(f"emcv-demo --list-methods names the adaptive methods {adaptive}, this script knows {ADAPTIVE}")
 
 
+def shard_jobs(a, jobs):
+    """The jobs of --shard I/N: those whose index % N == I (every job without --shard)."""
+    return [j for j in jobs if a.shard is None or j.index % a.shard[1] == a.shard[0]]
+
+
 def render(a, jobs, raw_dir, workers):
-    selected = [j for j in jobs if a.shard is None or j.index % a.shard[1] == a.shard[0]]
+    selected = shard_jobs(a, jobs)
     if a.resume:
         stale = {m.split(" ", 1)[0] for m in missing_jobs(selected, raw_dir)}
         selected = [j for j in selected if str(j.index) in stale]
@@ -1287,7 +1293,7 @@ def main(argv):
     c = Config(a.size, a.seeds, a.quick, a.stages)
     jobs = job_list(c)
     if a.list:
-        for j in jobs:
+        for j in shard_jobs(a, jobs):
             print(f"{j.index}\t{j.stage}/{j.name}\t{'timing' if j.serial else 'quality'}\t{j.command_text()}")
         return
     raw_dir = os.path.abspath(a.raw_dir or (os.path.join(tempfile.gettempdir(), "emcv-eval-quick") if a.quick
