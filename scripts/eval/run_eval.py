@@ -80,7 +80,7 @@ DEFAULT_NMAX = 64
 MEAN_FROM = 20    # "all frames" means frames 20 .. end: frames 0-19 are the resolve's warm-up from frame 0
 WINDOW = 30       # frames after a light change that "after the change" covers
 LAG_DB = 1.0      # lag: frames until the PSNR is within 1 dB of its settled value and stays there
-STEP = 0.25       # a light step: a light's intensity moves by over 25% of its largest value from one frame
+STEP = 0.10       # a light step: a steady light's intensity moves by over 10% of its largest value in one frame
 MERGE_STEPS = 4   # steps closer than this many frames are one change (a burst's on and off)
 MIN_WINDOW = 8    # a change followed by a shorter quiet window gets no lag
 
@@ -490,17 +490,19 @@ def parse_lights(text):
 
 def light_changes(lights):
     """(first change, [changes]): the first frame whose lights differ from the frame before, and the light steps
-    (a light moving by over STEP of its largest value in one frame), steps closer than MERGE_STEPS frames merged
-    into one change at the first of them. Each change is (frame, end of its quiet window, text)."""
+    (a light that held its intensity over the two frames before moving by over STEP of its largest value: a
+    step, not a point of a curve that moves every frame), steps closer than MERGE_STEPS frames merged into one
+    change at the first of them. Each change is (frame, end of its quiet window, text)."""
     frames = sorted(lights)
     names = sorted({n for f in frames for n in lights[f]})
     top = {n: max(lights[f].get(n, 0.0) for f in frames) for n in names}
     first, steps = None, []
-    for a, b in zip(frames, frames[1:]):
+    for i, (a, b) in enumerate(zip(frames, frames[1:])):
         moved = [n for n in names if lights[b].get(n, 0.0) != lights[a].get(n, 0.0)]
         if moved and first is None:
             first = b
-        big = [n for n in moved if top[n] > 0 and abs(lights[b][n] - lights[a][n]) > STEP * top[n]]
+        steady = [n for n in moved if i > 0 and lights[a].get(n, 0.0) == lights[frames[i - 1]].get(n, 0.0)]
+        big = [n for n in steady if top[n] > 0 and abs(lights[b][n] - lights[a][n]) > STEP * top[n]]
         if big:
             steps.append((b, ", ".join(f"{n} {lights[a][n]:g}->{lights[b][n]:g}" for n in big)))
     groups = []
@@ -511,7 +513,9 @@ def light_changes(lights):
             groups.append([(f, text)])
     changes = []
     for i, g in enumerate(groups):
-        end = groups[i + 1][0][0] if i + 1 < len(groups) else frames[-1] + 1
+        # The quiet window ends at the next change, or WINDOW frames on (the settled value of a longer window
+        # would be a mean over a long stretch whose single noisy frames then decide the lag).
+        end = min(groups[i + 1][0][0] if i + 1 < len(groups) else frames[-1] + 1, g[0][0] + WINDOW)
         changes.append((g[0][0], end, "; ".join(f"{f}: {t}" for f, t in g)))
     return first, changes
 
@@ -605,7 +609,9 @@ def lag_table(d):
     """After each light change of the quality scenes, per method at B = STORY_BUDGET: the resolved image's lag
     (the raw image's in brackets)."""
     methods = [f"burley-{STORY_BUDGET}"] + ADAPTIVE + ["separable-17", "diffuse"]
-    lines = ["| scene | change at frame (light steps) | quiet window | " + " | ".join(methods) +
+    lines = [f"Cells: frames until the resolved image is within {LAG_DB:g} dB of its settled PSNR (the raw image's in "
+             f"brackets), B = {STORY_BUDGET}.", "",
+             "| scene | change at frame (light steps) | quiet window | " + " | ".join(methods) +
              " | cv - spvg (resolved) |", "|---|---|---|" + "---:|" * (len(methods) + 1)]
     for scene in d.scenes:
         if scene not in d.lights:
