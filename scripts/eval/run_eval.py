@@ -162,9 +162,18 @@ def csv_text(rows, columns, comments):
     return s.getvalue()
 
 
+# The evaluation's own outputs: changes to them do not make the tree that rendered them "dirty".
+OUTPUTS = ["docs/results", "docs/results.md", "docs/images"]
+
+
 def git_commit():
-    head = subprocess.run(["git", "-C", ROOT, "describe", "--always", "--dirty"], capture_output=True, text=True)
-    return head.stdout.strip() or "unknown"
+    """The commit, with -dirty when a tracked file other than the evaluation's outputs differs from it."""
+    head = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
+    if head.returncode != 0:
+        return "unknown"
+    changed = subprocess.run(["git", "-C", ROOT, "status", "--porcelain", "--untracked-files=no", "--", "."] +
+                             [f":(exclude){p}" for p in OUTPUTS], capture_output=True, text=True).stdout
+    return head.stdout.strip() + ("-dirty" if changed.strip() else "")
 
 
 # ---------------------------------------------------------------------------------------------------- jobs
