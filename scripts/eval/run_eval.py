@@ -1,122 +1,134 @@
 #!/usr/bin/python3
-"""The renderer's evaluation: what each SSS method's accuracy costs in time (docs/results.md).
+"""The renderer's evaluation: what each SSS method's accuracy costs, at equal cost, raw and resolved (docs/results.md).
 
-One command regenerates every figure and table of docs/results/ and the generated blocks of docs/results.md:
-    /usr/bin/python3 scripts/eval/run_eval.py [--build build] [--size 128x128] [--seeds 1,2] [--quick]
+    /usr/bin/python3 scripts/eval/run_eval.py [--build build] [--size 128x128] [--seeds 1,2] [--jobs N]
+                                              [--shard I/N] [--merge] [--stages S,...] [--raw-dir DIR]
+                                              [--quick] [--check-determinism] [--plots-only]
 
-It needs build/bin/emcv-demo, emcv-eval and emcv-golden (cmake --build build --target emcv-demo emcv-eval
-emcv-golden) and
-runs them headless (EGL; Mesa llvmpipe here, so every time is a CPU rasteriser's time: docs/results.md says
-what that means). Stages, each writing its raw CSV under docs/results/raw/ first:
-  quality  emcv-demo over static, light-off, flicker, club: burley-1..64, separable-11/17/25, diffuse, and the
-           adaptive methods at each knob setting; PSNR against the reference (emcv-demo's metrics), SSS ms.
-  switch   emcv-eval on light-off, flicker, club: samples and SSS ms per frame, with the light curves.
-  heatmap  emcv-eval on light-off: sample counts before and after the switch, cv's alpha.
-  scaling  emcv-eval: SSS ms and samples against resolution and against the scattering radius (--sss-scale).
-  spread   emcv-golden: the golden cases rendered with seed 2 against the goldens (seed 1): how far an image
-           moves when every sample position moves, the bound for the tolerance another GPU needs.
-The adaptive knobs (target variance, N max) are tunables of the shared port (include/emcv/port/history.h,
-EMCV_HISTORY_TARGET / EMCV_HISTORY_N_MAX) that the renderer compiles into its GLSL at run time: each setting
-is passed as `--define NAME=VALUE`. The adaptive methods are the rows of emcv-demo --list-methods whose
-passes are "adaptive" (the method table).
---plots-only redraws from the raw CSVs without rendering. Outputs are written to temporary names and renamed.
+It needs emcv-demo, emcv-eval, emcv-golden and emcv-light-curves under BUILD/bin and runs them headless (EGL;
+Mesa llvmpipe here, so every time is a CPU rasteriser's time: docs/results.md says what that means).
+
+The evaluation is a list of independent jobs. Each job is one invocation of a renderer tool that writes its own
+raw CSV under the raw directory (default docs/results/raw/, STAGE/NAME.csv; the first lines, starting with '#',
+name the command, the commit and the GL renderer). The list's order, and so each job's index, is fixed:
+  1. lights      per scene (the quality scenes, then the variations): the lights per frame (emcv-eval, diffuse)
+  2. quality     per quality scene x group x seed: emcv-demo against the reference, raw and resolved (--resolve
+                 taa). Groups: "fixed" (diffuse, separable-11/17/25), then "B4", "B8", "B16", "B32" (burley-B,
+                 spvg, cv, cv-notex with --spp-budget B: every method spends B samples per SSS pixel)
+  3. variations  per scene file of demo/scenes/variations/ x B in 8, 16 (burley-B, spvg, cv, cv-notex; with
+                 separable-17 and diffuse at B = 8), first seed
+  4. teaser      per seed: light-off in quality mode (the default target variance), the paper's teaser methods
+  5. spread      emcv-golden: the golden cases with seed 2 against the goldens (seed 1)
+  6. cost        per quality scene x group: emcv-eval, SSS pass ms and samples per frame (the time axis)
+  7. switch      light-off, flicker, club: emcv-eval in quality mode, samples and SSS ms per frame
+  8. heatmap     light-off: per-pixel sample counts around the switch and cv's alpha (emcv-eval)
+  9. scaling     static: SSS ms against resolution (one job per size), then against --sss-scale (one per scale)
+Jobs 1-5 measure quality (PSNR, samples, lag: no time) and run --jobs N at once (concurrent.futures, one
+subprocess each). Jobs 6-9 are the timing stages: they run one at a time after the others, because jobs running
+side by side distort each other's times. --shard I/N runs only the jobs whose index % N == I, so that N machines
+split the list (their timing jobs then come from different machines: run the timing stages unsharded when the
+times are to be compared). Without --shard every job runs.
+
+After running, or with --merge (alias --plots-only) without running anything, the script assembles the tables
+and plots from the raw files of every shard: it refuses, naming the missing jobs, when a raw file is absent or
+was made with another command (another size, frames or seeds). The tables of quality (from jobs 1-4) are kept
+apart from those of time (jobs 6-9): the quality tables from --jobs 2 are byte-identical to those from --jobs 1,
+which --check-determinism verifies on the --quick list (64x64, two scenes, one seed). Every output is written to
+a temporary name and renamed. With the default raw directory (and not --quick) the GENERATED blocks of
+docs/results.md are rewritten and the plots go to docs/results/; otherwise they go to RAW_DIR/out/.
 """
 import argparse
+import concurrent.futures
 import csv
+import difflib
 import io
 import math
 import os
 import re
+import shlex
 import shutil
 import statistics
 import subprocess
 import sys
 import tempfile
+import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 RESULTS = os.path.join(ROOT, "docs", "results")
-RAW = os.path.join(RESULTS, "raw")
+DEFAULT_RAW = os.path.join(RESULTS, "raw")
 DOC = os.path.join(ROOT, "docs", "results.md")
 
-QUALITY_SCENES = ["static", "light-off", "flicker", "club"]
-# Frames per quality run: light-off whole (30 frames on each side of the switch), flicker through its bursts at
-# 8, 20 and 23, club over two periods of its fastest light (14 frames), static long enough to converge.
-QUALITY_FRAMES = {"static": 16, "light-off": 60, "flicker": 30, "club": 30}
-FIXED_METHODS = ["diffuse"] + [f"burley-{n}" for n in (1, 2, 4, 8, 16, 32, 64)] + \
-                [f"separable-{t}" for t in (11, 17, 25)]
-ADAPTIVE = []  # filled from emcv-demo --list-methods in main()
-DEFAULT_TARGET, DEFAULT_NMAX = 1e-4, 64
-# (target variance, N max): the target sweep at SPVG's N max, then N max at SPVG's target.
-ADAPTIVE_KNOBS = [(4e-4, 64), (1e-4, 64), (2.5e-5, 64), (1e-4, 32), (1e-4, 16)]
+QUALITY_SCENES = ["static", "light-off", "flicker", "club", "moving"]
+# Frames per quality run: 20 frames of the resolve's warm-up, then light-off's 30 frames on each side of its
+# switch; flicker past its last burst (41-42) by 29 frames; club over two periods of its slowest light (30).
+QUALITY_FRAMES = {"static": 60, "light-off": 60, "flicker": 72, "club": 60, "moving": 60}
+BUDGETS = [4, 8, 16, 32]
+VARIATION_BUDGETS = [8, 16]
+STORY_BUDGET = 8  # the budget of the switch story, the per-frame plots and the banding crop
+SEPARABLE = ["separable-11", "separable-17", "separable-25"]
+ADAPTIVE = ["spvg", "cv", "cv-notex"]  # checked against emcv-demo --list-methods ("adaptive" passes)
+FAMILIES = ["burley", "separable", "spvg", "cv", "cv-notex"]
+TEASER_METHODS = ["separable-17", "spvg", "cv", "cv-notex"]
 SWITCH_FRAME = 30  # light-off: the key light's step (demo/scenes/light-off.json)
 # The paper's teaser (Xie & Olano 2021, Fig. 1): SSS sampling pass ms and PSNR after the switch.
 PAPER = {"separable": (4.0, None), "spvg": (12.9, 48.6), "cv": (5.2, 47.5)}
 SCALING_SIZES = [(128, 128), (256, 256), (512, 288), (640, 360), (960, 540), (1280, 720)]
 SCALING_RADII = [0.25, 0.5, 1, 2, 4, 8]
 COST_METHODS = ["burley-16", "separable-17", "spvg", "cv", "cv-notex"]
+DEFAULT_NMAX = 64
+
+MEAN_FROM = 20    # "all frames" means frames 20 .. end: frames 0-19 are the resolve's warm-up from frame 0
+WINDOW = 30       # frames after a light change that "after the change" covers
+LAG_DB = 1.0      # lag: frames until the PSNR is within 1 dB of its settled value and stays there
+STEP = 0.10       # a light step: a steady light's intensity moves by over 10% of its largest value in one frame
+MERGE_STEPS = 4   # steps closer than this many frames are one change (a burst's on and off)
+MIN_WINDOW = 8    # a change followed by a shorter quiet window gets no lag
+
+QUALITY_STAGES = ["lights", "quality", "variations", "teaser", "spread"]
+TIMING_STAGES = ["cost", "switch", "heatmap", "scaling"]
+DEMO_COLUMNS = ["frame", "method", "mean_spp", "psnr_db", "psnr_resolved_db", "psnr_sss_db",
+                "psnr_sss_resolved_db"]
+
+
+def shown(path):
+    """A path as the messages show it: from the repository root when it is inside it."""
+    rel = os.path.relpath(path, ROOT)
+    return path if rel.startswith("..") else rel
 
 
 def die(msg):
     sys.exit(f"run_eval.py: {msg}")
 
 
-def knob_label(target, nmax):
-    return f"t{target:g}-n{nmax}"
-
+# ---------------------------------------------------------------------------------------------------- files
 
 def write_atomically(path, text):
     os.makedirs(os.path.dirname(path), exist_ok=True)
-    tmp = path + ".tmp"
+    tmp = f"{path}.tmp{os.getpid()}"
     with open(tmp, "w") as f:
         f.write(text)
     os.replace(tmp, path)
 
 
-def run(cmd, env=None):
-    r = subprocess.run(cmd, capture_output=True, text=True, env=env)
-    if r.returncode != 0:
-        die(f"{' '.join(cmd)} failed ({r.returncode}): {r.stderr.strip()[-500:]}")
-    return r.stdout
-
-
-def snapshot_shaders(tmp):
-    """A copy of shaders/ taken once: every run of this evaluation compiles the same GLSL, even while the
-    source tree changes under it."""
-    d = os.path.join(tmp, "shaders")
-    if not os.path.isdir(d):
-        shutil.copytree(os.path.join(ROOT, "shaders"), d)
-    return d
-
-
-def renderer_env(tmp):
-    """Snapshots of shaders/ and include/ taken once: every run of this evaluation compiles the same GLSL."""
-    env = dict(os.environ)
-    env["EMCV_SHADER_DIR"] = snapshot_shaders(tmp)
-    d = os.path.join(tmp, "include")
-    if not os.path.isdir(d):
-        shutil.copytree(os.path.join(ROOT, "include"), d)
-    env["EMCV_INCLUDE_DIR"] = d
-    return env
-
-
-def knob_defines(target, nmax):
-    """The renderer's --define arguments for a knob setting (validated by the renderer)."""
-    return ["--define", f"EMCV_HISTORY_TARGET={target:.6e}", "--define", f"EMCV_HISTORY_N_MAX={nmax}"]
-
-
-def methods_from_table(build, passes):
-    """Method names whose row in the method table records the given SSS passes (emcv-demo --list-methods)."""
-    rows = [line.split("\t") for line in run([os.path.join(build, "bin", "emcv-demo"), "--list-methods"]).splitlines()]
-    return [r[0] for r in rows if len(r) >= 2 and r[1] == passes]
-
-
 def read_csv_text(text):
-    return list(csv.DictReader(io.StringIO(text)))
+    return list(csv.DictReader(io.StringIO("\n".join(l for l in text.splitlines() if not l.startswith("#")))))
 
 
 def read_csv(path):
     with open(path) as f:
-        return list(csv.DictReader(f))
+        return read_csv_text(f.read())
+
+
+def header(path):
+    """The '# key: value' lines at the top of a raw file."""
+    out = {}
+    with open(path) as f:
+        for line in f:
+            if not line.startswith("# "):
+                break
+            k, _, v = line[2:].rstrip("\n").partition(": ")
+            out[k] = v
+    return out
 
 
 def to_float(v):
@@ -126,65 +138,249 @@ def to_float(v):
         return math.nan
 
 
-# ---------------------------------------------------------------------------------------------------- stages
-
-def stage_quality(a, tmp):
-    """emcv-demo runs: one per scene and seed for the fixed methods, one per adaptive knob setting."""
-    rows = []
-    demo = os.path.join(a.build, "bin", "emcv-demo")
-    for scene in QUALITY_SCENES:
-        for seed in a.seeds:
-            jobs = [("fixed", FIXED_METHODS, [])]
-            jobs += [(knob_label(t, n), ADAPTIVE, knob_defines(t, n)) for t, n in ADAPTIVE_KNOBS]
-            env = renderer_env(tmp)
-            for label, methods, defines in jobs:
-                out = os.path.join(tmp, f"q-{scene}-{seed}-{label}")
-                cmd = [demo, "--scene", scene, "--method", ",".join(methods), "--size", a.size,
-                       "--seed", str(seed), "--out", out] + defines
-                cmd += ["--frames", str(a.frames or QUALITY_FRAMES[scene])]
-                print(f"  quality: {scene} seed {seed} {label}", flush=True)
-                first = run(cmd, env).splitlines()[0]  # "scene S, WxH, N frames, seed S, <GL renderer>"
-                write_atomically(os.path.join(RAW, "device.txt"), first.split(", seed ")[-1].split(", ", 1)[-1] + "\n")
-                for r in read_csv(os.path.join(out, "metrics.csv")):
-                    r.update(scene=scene, seed=seed, knobs=label)
-                    rows.append(r)
-                shutil.rmtree(out)
-    return rows
-
-
-def stage_cost(a, tmp, scene, methods, size, frames, sss_scale=1.0, heatmaps=None):
-    cmd = [os.path.join(a.build, "bin", "emcv-eval"), "--scene", scene, "--method", ",".join(methods),
-           "--size", size, "--frames", str(frames), "--sss-scale", str(sss_scale)]
-    if heatmaps:
-        cmd += ["--heatmaps", ",".join(str(f) for f in heatmaps[0]), "--heatmap-dir", heatmaps[1]]
-    return read_csv_text(run(cmd, renderer_env(tmp)))
-
-
-def compact(value):
-    """A number as 6 significant digits (the raw CSVs stay small; every table prints 1-4 digits), else as is."""
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
+def number_text(column, value):
+    """A raw CSV cell: PSNR to 0.001 dB, samples to 4 decimals, times to 4 significant digits, else as is."""
+    x = to_float(value)
+    if not math.isfinite(x):
         return value
-    return value if x != x or x in (float("inf"), float("-inf")) or str(value).isdigit() else f"{x:.6g}"
+    if column.startswith("psnr"):
+        return f"{x:.3f}"
+    if column in ("mean_spp",):
+        return f"{x:.4f}"
+    if column.endswith("_ms"):
+        return f"{x:.4g}"
+    return value
 
 
-def save_rows(name, rows):
-    if not rows:
-        return
-    keys = list(rows[0].keys())
+def csv_text(rows, columns, comments):
     s = io.StringIO()
-    w = csv.DictWriter(s, fieldnames=keys, lineterminator="\n")
+    for k, v in comments.items():
+        s.write(f"# {k}: {v}\n")
+    w = csv.DictWriter(s, fieldnames=columns, lineterminator="\n", extrasaction="ignore")
     w.writeheader()
-    w.writerows({k: compact(v) for k, v in r.items()} for r in rows)
-    write_atomically(os.path.join(RAW, name), s.getvalue())
+    w.writerows({k: number_text(k, r.get(k, "")) for k in columns} for r in rows)
+    return s.getvalue()
 
 
-def stage_spread(a, tmp):
-    golden = os.path.join(a.build, "bin", "emcv-golden")
-    out = os.path.join(tmp, "seed2")
-    print("  spread: golden cases with seed 2", flush=True)
-    run([golden, "render", "--seed", "2", "--out", out], renderer_env(tmp))
+# The evaluation's own outputs: changes to them do not make the tree that rendered them "dirty".
+OUTPUTS = ["docs/results", "docs/results.md", "docs/images"]
+
+
+def git_commit():
+    """The commit, with -dirty when a tracked file other than the evaluation's outputs differs from it."""
+    head = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
+    if head.returncode != 0:
+        return "unknown"
+    changed = subprocess.run(["git", "-C", ROOT, "status", "--porcelain", "--untracked-files=no", "--", "."] +
+                             [f":(exclude){p}" for p in OUTPUTS], capture_output=True, text=True).stdout
+    return head.stdout.strip() + ("-dirty" if changed.strip() else "")
+
+
+# ---------------------------------------------------------------------------------------------------- jobs
+
+class Job:
+    """One renderer invocation and the raw file it writes (RAW/stage/name.csv, or a folder for the heatmaps)."""
+
+    def __init__(self, stage, name, tool, args, columns=None, meta=None):
+        self.stage, self.name, self.tool, self.args = stage, name, tool, args
+        self.columns = columns
+        self.meta = meta or {}
+        self.index = -1
+        self.serial = stage in TIMING_STAGES
+
+    def raw(self, raw_dir):
+        return os.path.join(raw_dir, self.stage, self.name + ("" if self.stage == "heatmap" else ".csv"))
+
+    def command_text(self):
+        """The command as recorded in the raw file: machine-independent (the tool's name, paths from the root)."""
+        return " ".join([self.tool] + [shlex.quote(a) for a in self.args])
+
+    def label(self):
+        return f"{self.index} {self.stage}/{self.name}"
+
+
+def demo_job(stage, name, scene, methods, size, frames, seed, budget=None, meta=None):
+    args = ["--scene", scene, "--method", ",".join(methods), "--size", size, "--frames", str(frames),
+            "--seed", str(seed), "--resolve", "taa", "--no-frames"]
+    if budget is not None:
+        args += ["--spp-budget", str(budget)]
+    return Job(stage, name, "emcv-demo", args, DEMO_COLUMNS, meta)
+
+
+def eval_job(stage, name, scene, methods, size, frames, budget=None, sss_scale=None, columns=None, meta=None):
+    args = ["--scene", scene, "--method", ",".join(methods), "--size", size, "--frames", str(frames)]
+    if budget is not None:
+        args += ["--spp-budget", str(budget)]
+    if sss_scale is not None:
+        args += ["--sss-scale", f"{sss_scale:g}"]
+    return Job(stage, name, "emcv-eval", args,
+               columns or ["method", "frame", "sss_ms", "mean_spp", "max_spp", "sss_pixels"], meta)
+
+
+def group_methods(group):
+    if group == "fixed":
+        return ["diffuse"] + SEPARABLE
+    b = int(group[1:])
+    return [f"burley-{b}"] + ADAPTIVE
+
+
+def scene_name(scene):
+    return os.path.splitext(os.path.basename(scene))[0]
+
+
+class Config:
+    def __init__(self, size, seeds, quick, stages):
+        self.size, self.seeds, self.quick, self.stages = size, seeds, quick, stages
+        if quick:
+            self.scenes = ["light-off", "flicker"]
+            self.groups = ["fixed", f"B{STORY_BUDGET}"]
+            self.variations = ["demo/scenes/variations/switch-on.json"]
+            self.variation_budgets = [STORY_BUDGET]
+        else:
+            self.scenes = QUALITY_SCENES
+            self.groups = ["fixed"] + [f"B{b}" for b in BUDGETS]
+            self.variations = sorted(os.path.relpath(os.path.join(ROOT, "demo", "scenes", "variations", f), ROOT)
+                                     for f in os.listdir(os.path.join(ROOT, "demo", "scenes", "variations"))
+                                     if f.endswith(".json"))
+            self.variation_budgets = VARIATION_BUDGETS
+
+    def frames(self, scene):
+        return QUALITY_FRAMES.get(scene, 0)
+
+
+def job_list(c):
+    """Every job of the evaluation in its documented order; a job's index is its position here."""
+    jobs = []
+    frames_of = {}
+    for scene in c.scenes:
+        frames_of[scene] = c.frames(scene)
+    for v in c.variations:
+        frames_of[v] = scene_frames(v)
+    if "lights" in c.stages:
+        for scene, frames in frames_of.items():
+            jobs.append(eval_job("lights", scene_name(scene), scene, ["diffuse"], "16x16", frames,
+                                 columns=["frame", "lights"]))
+    if "quality" in c.stages:
+        for scene in c.scenes:
+            for group in c.groups:
+                for seed in c.seeds:
+                    b = None if group == "fixed" else int(group[1:])
+                    jobs.append(demo_job("quality", f"{scene}-{group}-s{seed}", scene, group_methods(group), c.size,
+                                         frames_of[scene], seed, b, meta={"scene": scene, "group": group,
+                                                                          "seed": seed}))
+    if "variations" in c.stages:
+        for v in c.variations:
+            for b in c.variation_budgets:
+                methods = group_methods(f"B{b}") + (["separable-17", "diffuse"] if b == STORY_BUDGET else [])
+                jobs.append(demo_job("variations", f"{scene_name(v)}-B{b}-s{c.seeds[0]}", v, methods, c.size,
+                                     frames_of[v], c.seeds[0], b,
+                                     meta={"scene": scene_name(v), "group": f"B{b}", "seed": c.seeds[0]}))
+    if "teaser" in c.stages:
+        for seed in c.seeds:
+            jobs.append(demo_job("teaser", f"light-off-s{seed}", "light-off", TEASER_METHODS, c.size, 60, seed,
+                                 meta={"scene": "light-off", "group": "target", "seed": seed}))
+    if "spread" in c.stages:
+        jobs.append(Job("spread", "golden-seed-spread", "emcv-golden", ["render", "--seed", "2"],
+                        ["image", "verdict", "failing_percent", "max_error", "rmse"]))
+    if "cost" in c.stages:
+        for scene in c.scenes:
+            for group in c.groups:
+                b = None if group == "fixed" else int(group[1:])
+                jobs.append(eval_job("cost", f"{scene}-{group}", scene, group_methods(group), c.size,
+                                     frames_of[scene], b, meta={"scene": scene, "group": group}))
+    cost_size = "64x64" if c.quick else "128x128"
+    if "switch" in c.stages:
+        for scene, frames in (("light-off", 60), ("flicker", 48), ("club", 60)):
+            jobs.append(eval_job("switch", scene, scene, ["separable-17"] + ADAPTIVE, cost_size, frames,
+                                 columns=["scene", "method", "frame", "sss_ms", "mean_spp", "max_spp", "sss_pixels",
+                                          "lights"]))
+    if "heatmap" in c.stages:
+        frames = [SWITCH_FRAME - 1, SWITCH_FRAME + 3]
+        jobs.append(eval_job("heatmap", "heatmaps", "light-off", ADAPTIVE, cost_size, SWITCH_FRAME + 4,
+                             meta={"frames": frames}))
+        jobs[-1].args += ["--heatmaps", ",".join(str(f) for f in frames)]
+    if "scaling" in c.stages:
+        columns = ["method", "frame", "width", "height", "sss_scale", "sss_ms", "mean_spp", "sss_pixels"]
+        for w, h in (SCALING_SIZES[:2] if c.quick else SCALING_SIZES):
+            jobs.append(eval_job("scaling-resolution", f"{w}x{h}", "static", COST_METHODS, f"{w}x{h}", 8,
+                                 sss_scale=1, columns=columns))
+        for k in (SCALING_RADII[:2] if c.quick else SCALING_RADII):
+            jobs.append(eval_job("scaling-radius", f"k{k:g}", "static", COST_METHODS, "256x256", 8, sss_scale=k,
+                                 columns=columns))
+    for j in jobs:
+        j.serial = j.stage in TIMING_STAGES or j.stage.startswith("scaling")
+    # The documented order: quality-side stages first, then the timing stages, each in the order built above.
+    jobs = [j for j in jobs if not j.serial] + [j for j in jobs if j.serial]
+    for i, j in enumerate(jobs):
+        j.index = i
+    return jobs
+
+
+def scene_frames(scene_file):
+    """A scene file's own length (its "frames" key)."""
+    import json
+    with open(os.path.join(ROOT, scene_file)) as f:
+        return int(json.load(f).get("frames", 1))
+
+
+# ---------------------------------------------------------------------------------------------------- running
+
+class Context:
+    def __init__(self, build, raw_dir, tmp):
+        self.build, self.raw_dir, self.tmp = build, raw_dir, tmp
+        self.commit = git_commit()
+        # Snapshots of shaders/ and include/ taken once, before any job starts: every job compiles the same GLSL
+        # even while the source tree changes under the run.
+        self.env = dict(os.environ)
+        for name, var in (("shaders", "EMCV_SHADER_DIR"), ("include", "EMCV_INCLUDE_DIR")):
+            d = os.path.join(tmp, name)
+            shutil.copytree(os.path.join(ROOT, name), d)
+            self.env[var] = d
+
+
+def run_tool(ctx, job, extra):
+    cmd = [os.path.join(ctx.build, "bin", job.tool)] + job.args + extra
+    r = subprocess.run(cmd, capture_output=True, text=True, env=ctx.env, cwd=ROOT)
+    if r.returncode != 0:
+        raise RuntimeError(f"job {job.label()}: {' '.join(cmd)} failed ({r.returncode}): {r.stderr.strip()[-800:]}")
+    return r.stdout
+
+
+def run_job(ctx, job):
+    """Runs one job and writes its raw file atomically; returns the job."""
+    out = os.path.join(ctx.tmp, "jobs", f"{job.index}")
+    os.makedirs(out, exist_ok=True)
+    comments = {"job": f"{job.stage}/{job.name}", "cmd": job.command_text(), "commit": ctx.commit}
+    if job.tool == "emcv-demo":
+        first = run_tool(ctx, job, ["--out", out]).splitlines()[0]  # "scene S, WxH, N frames, seed S, ..., <GL>"
+        rest = first.split(", seed ", 1)[-1].split(", ", 1)[-1]
+        comments["device"] = rest.split(", ", 1)[-1] if rest.startswith("adaptive sampling") else rest
+        rows = [r for r in read_csv(os.path.join(out, "metrics.csv")) if r["method"] != "reference"]
+        text = csv_text(rows, job.columns, comments)
+    elif job.stage == "heatmap":
+        run_tool(ctx, job, ["--heatmap-dir", out])
+        with open(os.path.join(out, "job.txt"), "w") as f:
+            f.write("".join(f"# {k}: {v}\n" for k, v in comments.items()))
+        dest = job.raw(ctx.raw_dir)
+        os.makedirs(os.path.dirname(dest), exist_ok=True)
+        old = dest + f".old{os.getpid()}"
+        if os.path.exists(dest):
+            os.replace(dest, old)
+        shutil.move(out, dest)
+        shutil.rmtree(old, ignore_errors=True)
+        return job
+    elif job.tool == "emcv-golden":
+        text = csv_text(spread_rows(ctx, job, out), job.columns, comments)
+    else:
+        text = csv_text(read_csv_text(run_tool(ctx, job, [])), job.columns, comments)
+    write_atomically(job.raw(ctx.raw_dir), text)
+    shutil.rmtree(out, ignore_errors=True)
+    return job
+
+
+def spread_rows(ctx, job, out):
+    golden = os.path.join(ctx.build, "bin", "emcv-golden")
+    run_tool(ctx, job, ["--out", out])
     rows = []
     pattern = re.compile(r"^(\w+): (\d+) of (\d+) pixels over \S+ \(([\d.]+)%.*max ([\d.e+-]+) at .*RMSE ([\d.e+-]+)")
     for name in sorted(os.listdir(out)):
@@ -192,10 +388,334 @@ def stage_spread(a, tmp):
                             os.path.join(ROOT, "tests", "image", "golden", name)], capture_output=True, text=True)
         m = pattern.match(r.stdout.strip())
         if not m:
-            die(f"emcv-golden compare {name}: unexpected output {r.stdout!r} {r.stderr!r}")
+            raise RuntimeError(f"emcv-golden compare {name}: unexpected output {r.stdout!r} {r.stderr!r}")
         rows.append({"image": name, "verdict": m.group(1), "failing_percent": m.group(4),
                      "max_error": m.group(5), "rmse": m.group(6)})
     return rows
+
+
+def run_jobs(ctx, jobs, workers):
+    """The quality-side jobs `workers` at a time, then the timing jobs one at a time. Stops at the first failure
+    (the jobs already running finish; their raw files are complete)."""
+    pool_jobs = [j for j in jobs if not j.serial]
+    serial_jobs = [j for j in jobs if j.serial]
+    done = 0
+    total = len(jobs)
+    with concurrent.futures.ThreadPoolExecutor(max_workers=workers) as ex:
+        futures = [ex.submit(run_job, ctx, j) for j in pool_jobs]
+        try:
+            for f in concurrent.futures.as_completed(futures):
+                j = f.result()
+                done += 1
+                print(f"  [{done}/{total}] {j.label()}", flush=True)
+        except Exception as e:
+            for f in futures:
+                f.cancel()
+            die(str(e))
+    for j in serial_jobs:
+        try:
+            run_job(ctx, j)
+        except RuntimeError as e:
+            die(str(e))
+        done += 1
+        print(f"  [{done}/{total}] {j.label()} (timing: one job at a time)", flush=True)
+
+
+def missing_jobs(jobs, raw_dir):
+    """Jobs whose raw file is absent or was made by another command."""
+    out = []
+    for j in jobs:
+        path = j.raw(raw_dir)
+        meta = os.path.join(path, "job.txt") if j.stage == "heatmap" else path
+        if not os.path.exists(meta):
+            out.append(f"{j.label()} (no {shown(path)})")
+        elif header(meta).get("cmd") != j.command_text():
+            out.append(f"{j.label()} ({shown(path)} was made by `{header(meta).get('cmd')}`, "
+                       f"this list needs `{j.command_text()}`)")
+    return out
+
+
+# ---------------------------------------------------------------------------------------------------- data
+
+def mean_finite(xs):
+    xs = [x for x in xs if math.isfinite(x)]
+    return math.fsum(xs) / len(xs) if xs else math.nan
+
+
+def median(xs):
+    xs = [x for x in xs if not math.isnan(x)]
+    return statistics.median(xs) if xs else math.nan
+
+
+def method_family(method):
+    for f in ("burley", "separable"):
+        if method.startswith(f + "-"):
+            return f
+    return method
+
+
+class Data:
+    """The raw files of a job list, read in job order."""
+
+    def __init__(self, jobs, raw_dir):
+        self.jobs, self.raw_dir = jobs, raw_dir
+        self.lights = {}   # scene -> frame -> {light: intensity}
+        self.series = {}   # (stage, scene, group, method) -> frame -> {column: mean over seeds}
+        self.seeds = {}
+        for j in jobs:
+            if j.stage == "lights":
+                per = {}
+                for r in read_csv(j.raw(raw_dir)):
+                    per[int(r["frame"])] = parse_lights(r["lights"])
+                self.lights[j.name] = per
+        by = {}
+        for j in jobs:
+            if j.stage not in ("quality", "variations", "teaser"):
+                continue
+            for r in read_csv(j.raw(raw_dir)):
+                key = (j.stage, j.meta["scene"], j.meta["group"], r["method"])
+                by.setdefault(key, {}).setdefault(int(r["frame"]), []).append(r)
+        for key, frames in by.items():
+            self.series[key] = {f: {c: mean_finite([to_float(r[c]) for r in rs]) for c in DEMO_COLUMNS[2:]}
+                                for f, rs in sorted(frames.items())}
+            self.seeds[key] = max(len(rs) for rs in frames.values())
+
+    def methods(self, stage, scene, group):
+        return [k[3] for k in self.series if k[:3] == (stage, scene, group)]
+
+    def window_mean(self, key, column, first, last=None):
+        s = self.series.get(key, {})
+        return mean_finite([v[column] for f, v in s.items() if f >= first and (last is None or f <= last)])
+
+
+def parse_lights(text):
+    out = {}
+    for item in text.split(";"):
+        if "=" in item:
+            k, v = item.split("=", 1)
+            out[k] = float(v)
+    return out
+
+
+def light_changes(lights):
+    """(first change, [changes]): the first frame whose lights differ from the frame before, and the light steps
+    (a light that held its intensity over the two frames before moving by over STEP of its largest value: a
+    step, not a point of a curve that moves every frame), steps closer than MERGE_STEPS frames merged into one
+    change at the first of them. Each change is (frame, end of its quiet window, text)."""
+    frames = sorted(lights)
+    names = sorted({n for f in frames for n in lights[f]})
+    top = {n: max(lights[f].get(n, 0.0) for f in frames) for n in names}
+    first, steps = None, []
+    for i, (a, b) in enumerate(zip(frames, frames[1:])):
+        moved = [n for n in names if lights[b].get(n, 0.0) != lights[a].get(n, 0.0)]
+        if moved and first is None:
+            first = b
+        steady = [n for n in moved if i > 0 and lights[a].get(n, 0.0) == lights[frames[i - 1]].get(n, 0.0)]
+        big = [n for n in steady if top[n] > 0 and abs(lights[b][n] - lights[a][n]) > STEP * top[n]]
+        if big:
+            steps.append((b, ", ".join(f"{n} {lights[a][n]:g}->{lights[b][n]:g}" for n in big)))
+    groups = []
+    for f, text in steps:
+        if groups and f - groups[-1][-1][0] < MERGE_STEPS:
+            groups[-1].append((f, text))
+        else:
+            groups.append([(f, text)])
+    changes = []
+    for i, g in enumerate(groups):
+        # The quiet window ends at the next change, or WINDOW frames on (the settled value of a longer window
+        # would be a mean over a long stretch whose single noisy frames then decide the lag).
+        end = min(groups[i + 1][0][0] if i + 1 < len(groups) else frames[-1] + 1, g[0][0] + WINDOW)
+        changes.append((g[0][0], end, "; ".join(f"{f}: {t}" for f, t in g)))
+    return first, changes
+
+
+def lag(series, column, change, end):
+    """Frames from the change until the PSNR comes within LAG_DB of its settled value (the mean over the last
+    third of the quiet window, at least 3 frames) and stays there to the window's end; None for a window shorter
+    than MIN_WINDOW frames."""
+    if end - change < MIN_WINDOW:
+        return None
+    settled_from = end - max(3, (end - change) // 3)
+    settled = mean_finite([series[f][column] for f in range(settled_from, end) if f in series])
+    if not math.isfinite(settled):
+        return None
+    for k in range(end - change):
+        if all(f in series and series[f][column] >= settled - LAG_DB for f in range(change + k, end)):
+            return k
+    return end - change
+
+
+# ---------------------------------------------------------------------------------------------------- quality tables
+
+def fmt(x, digits=2):
+    return "n/a" if x is None or (isinstance(x, float) and not math.isfinite(x)) else f"{x:.{digits}f}"
+
+
+def sign(x, digits=2):
+    return "n/a" if x is None or not math.isfinite(x) else f"{x:+.{digits}f}"
+
+
+def setting_of(group, method):
+    if group == "fixed":
+        return "-"
+    return group[1:]
+
+
+def quality_points(d, scene):
+    """(method, group, mean spp, raw dB, resolved dB, raw SSS dB, resolved SSS dB) over frames MEAN_FROM..."""
+    points = []
+    for group in d.groups:
+        for m in d.methods("quality", scene, group):
+            key = ("quality", scene, group, m)
+            points.append((m, group) + tuple(d.window_mean(key, c, MEAN_FROM) for c in DEMO_COLUMNS[2:]))
+    return points
+
+
+def pareto_table(d):
+    lines = ["| scene | method | B | mean spp | PSNR raw | PSNR resolved | SSS px raw | SSS px resolved |",
+             "|---|---|---:|---:|---:|---:|---:|---:|"]
+    for scene in d.scenes:
+        for m, group, spp, raw, res, sraw, sres in quality_points(d, scene):
+            lines.append(f"| {scene} | {m} | {setting_of(group, m)} | {fmt(spp, 1)} | {fmt(raw)} | {fmt(res)} | "
+                         f"{fmt(sraw)} | {fmt(sres)} |")
+    return "\n".join(lines)
+
+
+def ranked(values):
+    """[(method, dB)] best first; ties broken by name so the order is stable."""
+    return sorted(((m, v) for m, v in values.items() if math.isfinite(v)), key=lambda mv: (-mv[1], mv[0]))
+
+
+def equal_samples_table(d):
+    """Per scene and B: the best of burley-B, spvg, cv, cv-notex (all B samples per SSS pixel), raw and resolved."""
+    lines = ["| scene | B | raw: best (dB) | over next | cv - spvg | cv - burley | "
+             "resolved: best (dB) | over next | cv - spvg | cv - burley |",
+             "|---|---:|---|---:|---:|---:|---|---:|---:|---:|"]
+    for scene in d.scenes:
+        for group in d.groups:
+            if group == "fixed":
+                continue
+            cells = []
+            for column in ("psnr_db", "psnr_resolved_db"):
+                vals = {m: d.window_mean(("quality", scene, group, m), column, MEAN_FROM)
+                        for m in d.methods("quality", scene, group)}
+                r = ranked(vals)
+                burley = vals.get(f"burley-{group[1:]}", math.nan)
+                cv, spvg = vals.get("cv", math.nan), vals.get("spvg", math.nan)
+                cells += [f"{r[0][0]} ({fmt(r[0][1])})" if r else "n/a",
+                          sign(r[0][1] - r[1][1]) if len(r) > 1 else "n/a", sign(cv - spvg), sign(cv - burley)]
+            lines.append(f"| {scene} | {group[1:]} | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def story_methods(d, stage, scene):
+    b = f"B{STORY_BUDGET}"
+    return [(m, b) for m in d.methods(stage, scene, b)] + \
+           [(m, "fixed") for m in d.methods(stage, scene, "fixed") if m in ("separable-17", "diffuse")]
+
+
+def lag_table(d):
+    """After each light change of the quality scenes, per method at B = STORY_BUDGET: the resolved image's lag
+    (the raw image's in brackets)."""
+    methods = [f"burley-{STORY_BUDGET}"] + ADAPTIVE + ["separable-17", "diffuse"]
+    lines = [f"Cells: frames until the resolved image is within {LAG_DB:g} dB of its settled PSNR (the raw image's in "
+             f"brackets), B = {STORY_BUDGET}.", "",
+             "| scene | change at frame (light steps) | quiet window | " + " | ".join(methods) +
+             " | cv - spvg (resolved) |", "|---|---|---|" + "---:|" * (len(methods) + 1)]
+    for scene in d.scenes:
+        if scene not in d.lights:
+            continue
+        first, changes = light_changes(d.lights[scene])
+        if not changes:
+            if first is not None:
+                lines.append(f"| {scene} | no step: the lights move every frame from frame {first} | - |" +
+                             " - |" * (len(methods) + 1))
+            continue
+        series = {m: d.series.get(("quality", scene, g, m)) for m, g in story_methods(d, "quality", scene)}
+        for change, end, text in changes:
+            cells, lags = [], {}
+            for m in methods:
+                s = series.get(m)
+                if not s:
+                    cells.append("n/a")
+                    continue
+                res, raw = lag(s, "psnr_resolved_db", change, end), lag(s, "psnr_db", change, end)
+                lags[m] = res
+                cells.append("-" if res is None else f"{res} ({raw})")
+            diff = (f"{lags['cv'] - lags['spvg']:+d}" if lags.get("cv") is not None and lags.get("spvg") is not None
+                    else "-")
+            lines.append(f"| {scene} | {text} | {change}-{end - 1} | " + " | ".join(cells) + f" | {diff} |")
+    return "\n".join(lines)
+
+
+def variations_table(d):
+    lines = ["| scene | B | method | 30 after: raw | resolved | all frames: raw | resolved | lag resolved (raw) |",
+             "|---|---:|---|---:|---:|---:|---:|---:|"]
+    for v in d.variations:
+        scene = scene_name(v)
+        first, changes = light_changes(d.lights[scene])
+        for b in d.variation_budgets:
+            group = f"B{b}"
+            for m in d.methods("variations", scene, group):
+                key = ("variations", scene, group, m)
+                s = d.series[key]
+                after = [d.window_mean(key, c, first, first + WINDOW - 1) if first is not None else math.nan
+                         for c in ("psnr_db", "psnr_resolved_db")]
+                whole = [d.window_mean(key, c, MEAN_FROM) for c in ("psnr_db", "psnr_resolved_db")]
+                if changes:
+                    change, end, _ = changes[0]
+                    res, raw = lag(s, "psnr_resolved_db", change, end), lag(s, "psnr_db", change, end)
+                    lagtext = "-" if res is None else f"{res} ({raw})"
+                else:
+                    lagtext = "no step"
+                lines.append(f"| {scene} | {b} | {m} | {fmt(after[0])} | {fmt(after[1])} | {fmt(whole[0])} | "
+                             f"{fmt(whole[1])} | {lagtext} |")
+    return "\n".join(lines)
+
+
+def variations_summary(d):
+    """Per variation and B: cv's and cv-notex's margin over spvg and over burley-B, 30 frames after, resolved."""
+    lines = ["| scene | B | first change | cv - spvg raw | cv - spvg resolved | cv - burley raw | cv - burley "
+             "resolved | best resolved, 30 after (dB) |", "|---|---:|---:|---:|---:|---:|---:|---|"]
+    for v in d.variations:
+        scene = scene_name(v)
+        first, _ = light_changes(d.lights[scene])
+        if first is None:
+            continue
+        for b in d.variation_budgets:
+            group = f"B{b}"
+            val = {(m, c): d.window_mean(("variations", scene, group, m), c, first, first + WINDOW - 1)
+                   for m in d.methods("variations", scene, group) for c in ("psnr_db", "psnr_resolved_db")}
+            g = lambda m, c: val.get((m, c), math.nan)  # noqa: E731
+            best = ranked({m: g(m, "psnr_resolved_db") for m in d.methods("variations", scene, group)})
+            burley = f"burley-{b}"
+            lines.append(f"| {scene} | {b} | {first} | {sign(g('cv', 'psnr_db') - g('spvg', 'psnr_db'))} | "
+                         f"{sign(g('cv', 'psnr_resolved_db') - g('spvg', 'psnr_resolved_db'))} | "
+                         f"{sign(g('cv', 'psnr_db') - g(burley, 'psnr_db'))} | "
+                         f"{sign(g('cv', 'psnr_resolved_db') - g(burley, 'psnr_resolved_db'))} | "
+                         f"{best[0][0] + ' (' + fmt(best[0][1]) + ')' if best else 'n/a'} |")
+    return "\n".join(lines)
+
+
+def teaser_table(d):
+    """light-off in quality mode over the 30 frames from the switch, beside the paper's teaser (samples, PSNR)."""
+    keys = {m: ("teaser", "light-off", "target", m) for m in TEASER_METHODS}
+    if not all(k in d.series for k in keys.values()):
+        return None
+    w = {m: {c: d.window_mean(k, c, SWITCH_FRAME, SWITCH_FRAME + WINDOW - 1)
+             for c in ("mean_spp", "psnr_db", "psnr_resolved_db")} for m, k in keys.items()}
+    spvg = w["spvg"]
+    lines = ["| method | mean spp | x spvg | PSNR raw | dB vs spvg | PSNR resolved | dB vs spvg | paper dB vs spvg |",
+             "|---|---:|---:|---:|---:|---:|---:|---:|"]
+    for m in TEASER_METHODS:
+        s = w[m]
+        label = "separable" if m.startswith("separable") else m
+        pdb = PAPER.get(label, (None, None))[1]
+        lines.append(f"| {m} | {fmt(s['mean_spp'], 1)} | {fmt(s['mean_spp'] / spvg['mean_spp'])} | "
+                     f"{fmt(s['psnr_db'])} | {sign(s['psnr_db'] - spvg['psnr_db'])} | {fmt(s['psnr_resolved_db'])} | "
+                     f"{sign(s['psnr_resolved_db'] - spvg['psnr_resolved_db'])} | "
+                     f"{sign(pdb - PAPER['spvg'][1], 1) if pdb else '-'} |")
+    return "\n".join(lines)
 
 
 def spread_table(rows):
@@ -216,216 +736,95 @@ def spread_table(rows):
     return "\n".join(lines)
 
 
-# ---------------------------------------------------------------------------------------------------- summaries
+def quality_blocks(d):
+    """Every table that depends on quality only (no time): byte-identical whatever --jobs was."""
+    blocks = {}
+    if any(j.stage == "quality" for j in d.jobs):
+        blocks["equal-samples"] = equal_samples_table(d)
+        blocks["lag"] = lag_table(d)
+        blocks["pareto-quality"] = pareto_table(d)
+    if any(j.stage == "variations" for j in d.jobs):
+        blocks["variations"] = variations_summary(d) + "\n\n" + variations_table(d)
+    if any(j.stage == "teaser" for j in d.jobs):
+        t = teaser_table(d)
+        if t:
+            blocks["teaser"] = t
+    spread = [j for j in d.jobs if j.stage == "spread"]
+    if spread:
+        blocks["seed-spread"] = spread_table(read_csv(spread[0].raw(d.raw_dir)))
+    return blocks
 
-def median(xs):
-    xs = [x for x in xs if not math.isnan(x)]
-    return statistics.median(xs) if xs else math.nan
 
+# ---------------------------------------------------------------------------------------------------- time tables
 
-def mean_finite(xs):
-    xs = [x for x in xs if math.isfinite(x)]
-    return statistics.fmean(xs) if xs else math.nan
-
-
-def summarize_quality(rows, first_frame=1, last_frame=None):
-    """(scene, method, knobs) -> dict: SSS ms median over frames and seeds (frame 0 is warm-up), PSNR mean."""
-    groups = {}
-    for r in rows:
-        f = int(r["frame"])
-        if f < first_frame or (last_frame is not None and f > last_frame) or r["method"] == "reference":
-            continue
-        groups.setdefault((r["scene"], r["method"], r["knobs"]), []).append(r)
+def cost_ms(d):
+    """(scene, group, method) -> median SSS ms over frames 1.. of the cost job (frame 0 compiles and warms up)."""
     out = {}
-    for k, rs in groups.items():
-        out[k] = {
-            "sss_ms": median([to_float(r["sss_ms"]) for r in rs]),
-            "psnr_db": mean_finite([to_float(r["psnr_db"]) for r in rs]),
-            "psnr_sss_db": mean_finite([to_float(r["psnr_sss_db"]) for r in rs]),
-            "mean_spp": mean_finite([to_float(r["mean_spp"]) for r in rs]),
-            "temporal_error": mean_finite([to_float(r["temporal_error"]) for r in rs]),
-            "n": len(rs),
-        }
+    for j in d.jobs:
+        if j.stage != "cost":
+            continue
+        by = {}
+        for r in read_csv(j.raw(d.raw_dir)):
+            if int(r["frame"]) >= 1:
+                by.setdefault(r["method"], []).append(to_float(r["sss_ms"]))
+        for m, xs in by.items():
+            out[(j.meta["scene"], j.meta["group"], m)] = median(xs)
     return out
 
 
-# ---------------------------------------------------------------------------------------------------- plots
-
-def plt_module():
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    return plt
-
-
-def save_fig(fig, name):
-    path = os.path.join(RESULTS, name)
-    tmp = path + ".tmp.png"
-    fig.savefig(tmp, dpi=110, bbox_inches="tight")
-    os.replace(tmp, path)
-    plt_module().close(fig)
+def family_curve(d, ms, scene, family, column):
+    """[(ms, dB)] of a method family over its settings, sorted by time."""
+    pts = []
+    for m, group, *vals in quality_points(d, scene):
+        if method_family(m) == family and (scene, group, m) in ms:
+            v = vals[DEMO_COLUMNS[2:].index(column)]
+            if math.isfinite(v) and ms[(scene, group, m)] > 0:
+                pts.append((ms[(scene, group, m)], v))
+    return sorted(pts)
 
 
-def plot_pareto(summary, device):
-    plt = plt_module()
-    colours = {"burley": "tab:blue", "separable": "tab:orange", "spvg": "tab:red", "cv": "tab:green",
-               "cv-notex": "tab:purple", "diffuse": "black"}
-    for scene in QUALITY_SCENES:
-        fig, ax = plt.subplots(figsize=(7.5, 5))
-        curves = {
-            "burley": [(f"burley-{n}", "fixed", str(n)) for n in (1, 2, 4, 8, 16, 32, 64)],
-            "separable": [(f"separable-{t}", "fixed", f"{t} taps") for t in (11, 17, 25)],
-        }
-        for m in ADAPTIVE:
-            curves[m] = [(m, knob_label(t, n), f"{t:g}") for t, n in ADAPTIVE_KNOBS if n == DEFAULT_NMAX]
-        for family, points in curves.items():
-            xs, ys, labels = [], [], []
-            for method, knobs, label in points:
-                s = summary.get((scene, method, knobs))
-                if s and math.isfinite(s["psnr_db"]):
-                    xs.append(s["sss_ms"]); ys.append(s["psnr_db"]); labels.append(label)
-            if not xs:
+def at_time(curve, t):
+    """The curve's PSNR at time t, linear in log time between its two neighbouring points; None outside."""
+    if not curve or t < curve[0][0] or t > curve[-1][0]:
+        return None
+    for (t0, p0), (t1, p1) in zip(curve, curve[1:]):
+        if t0 <= t <= t1:
+            return p0 if t1 == t0 else p0 + (p1 - p0) * (math.log(t) - math.log(t0)) / (math.log(t1) - math.log(t0))
+    return curve[0][1]
+
+
+def equal_time_table(d, ms):
+    lines = ["| scene | SSS ms (burley-B's) | raw: best (dB) | over next | over burley | resolved: best (dB) | "
+             "over next | over burley | in range |", "|---|---|---|---:|---:|---|---:|---:|---|"]
+    for scene in d.scenes:
+        for b in BUDGETS:
+            t = ms.get((scene, f"B{b}", f"burley-{b}"))
+            if t is None or not math.isfinite(t):
                 continue
-            ax.plot(xs, ys, "o-", color=colours[family], label=family)
-            for x, y, l in zip(xs, ys, labels):
-                ax.annotate(l, (x, y), fontsize=7, xytext=(3, 3), textcoords="offset points")
-        for m in ADAPTIVE:  # the N max variants at SPVG's target, as open markers
-            for t, n in ADAPTIVE_KNOBS:
-                s = summary.get((scene, m, knob_label(t, n)))
-                if n != DEFAULT_NMAX and s and math.isfinite(s["psnr_db"]):
-                    ax.plot([s["sss_ms"]], [s["psnr_db"]], "s", mfc="none", color=colours[m])
-                    ax.annotate(f"N<={n}", (s["sss_ms"], s["psnr_db"]), fontsize=7, xytext=(3, -9),
-                                textcoords="offset points", color=colours[m])
-        d = summary.get((scene, "diffuse", "fixed"))
-        if d and math.isfinite(d["psnr_db"]):
-            ax.axhline(d["psnr_db"], color="black", lw=0.8, ls=":", label="diffuse (no SSS)")
-        ax.set_xscale("log")
-        ax.set_xlabel("SSS pass time, ms (median over frames and seeds; log)")
-        ax.set_ylabel("PSNR vs reference, dB (display image, mean over frames)")
-        ax.set_title(f"{scene}: time vs quality ({device})", fontsize=10)
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8, loc="lower right")
-        save_fig(fig, f"pareto-{scene}.png")
+            cells, present = [], set()
+            for column in ("psnr_db", "psnr_resolved_db"):
+                vals = {}
+                for f in FAMILIES:
+                    v = at_time(family_curve(d, ms, scene, f, column), t)
+                    if v is not None:
+                        vals[f] = v
+                        present.add(f)
+                r = ranked(vals)
+                cells += [f"{r[0][0]} ({fmt(r[0][1])})" if r else "n/a",
+                          sign(r[0][1] - r[1][1]) if len(r) > 1 else "-",
+                          sign(r[0][1] - vals["burley"]) if "burley" in vals else "-"]
+            lines.append(f"| {scene} | {fmt(t)} (B {b}) | " + " | ".join(cells) +
+                         f" | {', '.join(f for f in FAMILIES if f in present)} |")
+    return "\n".join(lines)
 
 
-def parse_lights(text):
-    out = {}
-    for item in text.split(";"):
-        if "=" in item:
-            k, v = item.split("=", 1)
-            out[k] = float(v)
-    return out
-
-
-def plot_switch(rows_by_scene, device):
-    plt = plt_module()
-    colours = {"separable-17": "tab:orange", "spvg": "tab:red", "cv": "tab:green", "cv-notex": "tab:purple"}
-    for scene, rows in rows_by_scene.items():
-        fig, axes = plt.subplots(3, 1, figsize=(7.5, 7), sharex=True, gridspec_kw={"height_ratios": [3, 3, 1.4]})
-        for m, c in colours.items():
-            rs = sorted((r for r in rows if r["method"] == m), key=lambda r: int(r["frame"]))
-            fr = [int(r["frame"]) for r in rs]
-            axes[0].plot(fr, [to_float(r["mean_spp"]) for r in rs], color=c, label=m)
-            # Frame 0 compiles the shaders and warms up (100x a later frame): left out so the rest can be read.
-            axes[1].plot(fr[1:], [to_float(r["sss_ms"]) for r in rs[1:]], color=c, label=m)
-        rs = sorted((r for r in rows if r["method"] == "cv"), key=lambda r: int(r["frame"]))
-        lights = [parse_lights(r["lights"]) for r in rs]
-        for name in (lights[0].keys() if lights else []):
-            axes[2].step([int(r["frame"]) for r in rs], [l[name] for l in lights], where="post", label=name)
-        axes[0].set_ylabel("mean samples\nper SSS pixel")
-        axes[1].set_ylabel("SSS pass ms\n(from frame 1)")
-        axes[2].set_ylabel("light\nintensity")
-        axes[2].set_xlabel("frame")
-        axes[0].legend(fontsize=8, ncol=4)
-        axes[2].legend(fontsize=7, ncol=3)
-        for ax in axes:
-            ax.grid(True, alpha=0.3)
-        axes[0].set_title(f"{scene}: samples and SSS pass time per frame ({device})", fontsize=10)
-        save_fig(fig, f"switch-{scene}.png")
-
-
-def read_matrix(path):
-    import numpy as np
-    return np.loadtxt(path, delimiter=",", ndmin=2)
-
-
-def plot_heatmaps(heat_dir, frames, device):
-    import numpy as np
-    plt = plt_module()
-    fig, axes = plt.subplots(len(frames), len(ADAPTIVE) + 1, figsize=(11, 2.7 * len(frames)))
-    for i, f in enumerate(frames):
-        for j, m in enumerate(ADAPTIVE):
-            counts = read_matrix(os.path.join(heat_dir, f"{m}.f{f}.samples.csv"))
-            mask = read_matrix(os.path.join(heat_dir, f"{m}.f{f}.mask.csv")) > 0.5
-            shown = np.where(mask, counts, np.nan)
-            im = axes[i][j].imshow(shown, cmap="inferno", vmin=0, vmax=DEFAULT_NMAX)
-            mean = counts[mask].mean() if mask.any() else 0.0
-            axes[i][j].set_title(f"{m}, frame {f}: mean N {mean:.1f}", fontsize=8)
-        fig.colorbar(im, ax=list(axes[i][:len(ADAPTIVE)]), shrink=0.8, label="samples")
-        alpha = read_matrix(os.path.join(heat_dir, f"cv.f{f}.alpha.csv"))
-        mask = read_matrix(os.path.join(heat_dir, f"cv.f{f}.mask.csv")) > 0.5
-        im = axes[i][-1].imshow(np.where(mask, alpha, np.nan), cmap="coolwarm", vmin=0, vmax=2)
-        axes[i][-1].set_title(f"cv alpha, frame {f}", fontsize=8)
-        fig.colorbar(im, ax=axes[i][-1], shrink=0.8)
-        for ax in axes[i]:
-            ax.set_xticks([]); ax.set_yticks([])
-    fig.suptitle(f"light-off: samples per pixel around the switch at frame {SWITCH_FRAME} ({device})", fontsize=10)
-    save_fig(fig, "heatmaps-light-off.png")
-
-
-def plot_scaling(rows, key, xlabel, name, device, pixels=False):
-    plt = plt_module()
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4))
-    groups = {}
-    for r in rows:
-        if int(r["frame"]) < 2:  # warm-up, and the adaptive methods' first (full-rate) frames
-            continue
-        x = int(r["width"]) * int(r["height"]) if pixels else to_float(r["sss_scale"])
-        groups.setdefault(r["method"], {}).setdefault(x, []).append(r)
-    for m, by_x in groups.items():
-        xs = sorted(by_x)
-        axes[0].plot(xs, [median([to_float(r["sss_ms"]) for r in by_x[x]]) for x in xs], "o-", label=m)
-        axes[1].plot(xs, [mean_finite([to_float(r["mean_spp"]) for r in by_x[x]]) for x in xs], "o-", label=m)
-    for ax in axes:
-        ax.set_xscale("log"); ax.set_xlabel(xlabel); ax.grid(True, which="both", alpha=0.3)
-    axes[0].set_yscale("log")
-    axes[0].set_ylabel("SSS pass ms (median over frames 2..)")
-    axes[1].set_ylabel("mean samples per SSS pixel")
-    axes[0].legend(fontsize=8)
-    fig.suptitle(f"{name} ({device})", fontsize=10)
-    save_fig(fig, f"{key}.png")
-    return groups
-
-
-# ---------------------------------------------------------------------------------------------------- tables
-
-def fmt(x, digits=2):
-    return "n/a" if x is None or (isinstance(x, float) and not math.isfinite(x)) else f"{x:.{digits}f}"
-
-
-def teaser_table(rows):
-    """Separable / spvg / cv / cv-notex on light-off after the switch, beside the paper's teaser."""
-    after = summarize_quality([r for r in rows if r["scene"] == "light-off"], first_frame=SWITCH_FRAME)
-    default = knob_label(DEFAULT_TARGET, DEFAULT_NMAX)
-    # SPVG capped at N max 16 too: the simplest way to bound SPVG's spike, the baseline cv has to beat.
-    entries = [("separable", "separable-17", "fixed"), ("spvg", "spvg", default), ("cv", "cv", default),
-               ("cv-notex", "cv-notex", default), ("spvg, N max 16", "spvg", knob_label(DEFAULT_TARGET, 16))]
-    spvg = after.get(("light-off", "spvg", default))
-    lines = ["| method | SSS pass ms (ours) | x spvg (ours) | PSNR dB (ours) | dB vs spvg (ours) | mean spp (ours) "
-             "| paper ms | x spvg (paper) | paper dB | dB vs spvg (paper) |",
-             "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
-    for label, method, knobs in entries:
-        s = after.get(("light-off", method, knobs))
-        if not s:
-            continue
-        pm, pdb = PAPER.get(label, (None, None))
-        ratio = s["sss_ms"] / spvg["sss_ms"] if spvg else math.nan
-        ddb = s["psnr_db"] - spvg["psnr_db"] if spvg else math.nan
-        pr = pm / PAPER["spvg"][0] if pm else None
-        pd = pdb - PAPER["spvg"][1] if pdb else None
-        lines.append(f"| {label} | {fmt(s['sss_ms'])} | {fmt(ratio)} | {fmt(s['psnr_db'])} | {fmt(ddb):s} | "
-                     f"{fmt(s['mean_spp'], 1)} | {fmt(pm, 1) if pm else '-'} | {fmt(pr) if pr else '-'} | "
-                     f"{fmt(pdb, 1) if pdb else '-'} | {fmt(pd, 1) if pd is not None else '-'} |")
+def pareto_time_table(d, ms):
+    lines = ["| scene | method | B | SSS ms (median, frames 1..) | x burley-B |", "|---|---|---:|---:|---:|"]
+    for (scene, group, m), t in sorted(ms.items(), key=lambda kv: (d.scenes.index(kv[0][0]) if kv[0][0] in d.scenes
+                                                                  else 99, d.groups.index(kv[0][1]), kv[0][2])):
+        ref = ms.get((scene, group, f"burley-{group[1:]}")) if group != "fixed" else None
+        lines.append(f"| {scene} | {m} | {setting_of(group, m)} | {fmt(t)} | "
+                     f"{fmt(t / ref) if ref else '-'} |")
     return "\n".join(lines)
 
 
@@ -452,6 +851,26 @@ def switch_table(rows):
     return "\n".join(lines)
 
 
+def teaser_time_table(rows):
+    """light-off after the switch (emcv-eval in quality mode): SSS ms beside the paper's teaser times."""
+    after = [r for r in rows if r["scene"] == "light-off" and int(r["frame"]) >= SWITCH_FRAME]
+    ms = {m: median([to_float(r["sss_ms"]) for r in after if r["method"] == m]) for m in TEASER_METHODS}
+    if not math.isfinite(ms.get("spvg", math.nan)):
+        return None
+    lines = ["| method | SSS pass ms (ours) | x spvg (ours) | paper ms | x spvg (paper) |", "|---|---:|---:|---:|---:|"]
+    for m in TEASER_METHODS:
+        label = "separable" if m.startswith("separable") else m
+        pm = PAPER.get(label, (None, None))[0]
+        lines.append(f"| {m} | {fmt(ms[m])} | {fmt(ms[m] / ms['spvg'])} | {fmt(pm, 1) if pm else '-'} | "
+                     f"{fmt(pm / PAPER['spvg'][0]) if pm else '-'} |")
+    return "\n".join(lines)
+
+
+def read_matrix(path):
+    import numpy as np
+    return np.loadtxt(path, delimiter=",", ndmin=2)
+
+
 def heatmap_table(heat_dir, frames):
     """Per adaptive method and heatmap frame: mean N over SSS pixels, the share at N max; cv's alpha."""
     import numpy as np
@@ -473,14 +892,14 @@ def heatmap_table(heat_dir, frames):
     return "\n".join(lines)
 
 
-def pareto_table(summary):
-    lines = ["| scene | method | knob | SSS ms | mean spp | PSNR dB | PSNR SSS dB | temporal error |",
-             "|---|---|---|---:|---:|---:|---:|---:|"]
-    for (scene, method, knobs), s in sorted(summary.items(), key=lambda kv: (QUALITY_SCENES.index(kv[0][0]),
-                                                                             kv[0][1], kv[0][2])):
-        lines.append(f"| {scene} | {method} | {knobs} | {fmt(s['sss_ms'])} | {fmt(s['mean_spp'], 1)} | "
-                     f"{fmt(s['psnr_db'])} | {fmt(s['psnr_sss_db'])} | {fmt(s['temporal_error'], 4)} |")
-    return "\n".join(lines)
+def scaling_groups(rows, pixels):
+    groups = {}
+    for r in rows:
+        if int(r["frame"]) < 2:  # warm-up, and the adaptive methods' first (full-rate) frames
+            continue
+        x = int(r["width"]) * int(r["height"]) if pixels else to_float(r["sss_scale"])
+        groups.setdefault(r["method"], {}).setdefault(x, []).append(r)
+    return groups
 
 
 def scaling_table(groups, xname, xfmt):
@@ -513,6 +932,168 @@ def per_sss_pixel_table(groups):
     return "\n".join(lines)
 
 
+def stage_rows(d, stage):
+    rows = []
+    for j in d.jobs:
+        if j.stage == stage:
+            rows += read_csv(j.raw(d.raw_dir))
+    return rows
+
+
+# ---------------------------------------------------------------------------------------------------- plots
+
+COLOURS = {"burley": "tab:blue", "separable": "tab:orange", "spvg": "tab:red", "cv": "tab:green",
+           "cv-notex": "tab:purple", "diffuse": "black"}
+
+
+def plt_module():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt
+
+
+def save_fig(fig, out_dir, name):
+    path = os.path.join(out_dir, name)
+    os.makedirs(out_dir, exist_ok=True)
+    tmp = f"{path}.tmp{os.getpid()}.png"
+    fig.savefig(tmp, dpi=110, bbox_inches="tight")
+    os.replace(tmp, path)
+    plt_module().close(fig)
+
+
+def plot_pareto(d, ms, out_dir, device):
+    """Per scene: PSNR raw and resolved against SSS ms (when the cost stage ran) and against mean samples."""
+    plt = plt_module()
+    for scene in d.scenes:
+        points = quality_points(d, scene)
+        xs_kinds = [("spp", "mean samples per SSS pixel (log)")] + ([("ms", "SSS pass ms (median; log)")] if ms else [])
+        fig, axes = plt.subplots(2, len(xs_kinds), figsize=(6 * len(xs_kinds), 8), squeeze=False)
+        for col, (kind, xlabel) in enumerate(xs_kinds):
+            for row, (column, title) in enumerate((("psnr_db", "raw"), ("psnr_resolved_db", "resolved (taa)"))):
+                ax = axes[row][col]
+                vi = DEMO_COLUMNS[2:].index(column)
+                for family in FAMILIES:
+                    pts = []
+                    for m, group, *vals in points:
+                        if method_family(m) != family:
+                            continue
+                        x = vals[0] if kind == "spp" else ms.get((scene, group, m), math.nan)
+                        if math.isfinite(x) and x > 0 and math.isfinite(vals[vi]):
+                            pts.append((x, vals[vi], m.split("-")[-1] if family in ("burley", "separable")
+                                        else group[1:]))
+                    pts.sort()
+                    if pts:
+                        ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", color=COLOURS[family], label=family)
+                        for x, y, l in pts:
+                            ax.annotate(l, (x, y), fontsize=6, xytext=(3, 3), textcoords="offset points")
+                for m, group, *vals in points:
+                    if m == "diffuse" and math.isfinite(vals[vi]):
+                        ax.axhline(vals[vi], color="black", lw=0.8, ls=":", label="diffuse (no SSS)")
+                ax.set_xscale("log")
+                ax.set_xlabel(xlabel)
+                ax.set_ylabel(f"PSNR {title}, dB (mean, frames {MEAN_FROM}..)")
+                ax.grid(True, which="both", alpha=0.3)
+                ax.legend(fontsize=7, loc="lower right")
+        fig.suptitle(f"{scene}: quality at equal cost; labels: B, or separable's taps ({device})", fontsize=10)
+        save_fig(fig, out_dir, f"pareto-{scene}.png")
+
+
+def plot_frames(d, out_dir, device):
+    """Per quality scene with lights that change: PSNR per frame, raw (dashed) and resolved (solid), at B = 8."""
+    plt = plt_module()
+    for scene in d.scenes:
+        if scene not in d.lights or light_changes(d.lights[scene])[0] is None:
+            continue
+        fig, ax = plt.subplots(figsize=(8, 4.5))
+        for m, g in story_methods(d, "quality", scene):
+            s = d.series[("quality", scene, g, m)]
+            fr = sorted(s)
+            c = COLOURS[method_family(m)]
+            ax.plot(fr, [s[f]["psnr_resolved_db"] for f in fr], "-", color=c, label=f"{m} resolved")
+            ax.plot(fr, [s[f]["psnr_db"] for f in fr], "--", color=c, lw=0.8, label=f"{m} raw")
+        for change, _end, _ in light_changes(d.lights[scene])[1]:
+            ax.axvline(change, color="grey", lw=0.8)
+        ax.set_xlabel("frame (grey: light changes)")
+        ax.set_ylabel("PSNR vs reference, dB")
+        ax.set_title(f"{scene}, B = {STORY_BUDGET}: raw (dashed) and resolved (solid) per frame ({device})",
+                     fontsize=9)
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=6, ncol=3, loc="lower right")
+        save_fig(fig, out_dir, f"frames-{scene}.png")
+
+
+def plot_switch(rows_by_scene, out_dir, device):
+    plt = plt_module()
+    colours = {"separable-17": "tab:orange", "spvg": "tab:red", "cv": "tab:green", "cv-notex": "tab:purple"}
+    for scene, rows in rows_by_scene.items():
+        fig, axes = plt.subplots(3, 1, figsize=(7.5, 7), sharex=True, gridspec_kw={"height_ratios": [3, 3, 1.4]})
+        for m, c in colours.items():
+            rs = sorted((r for r in rows if r["method"] == m), key=lambda r: int(r["frame"]))
+            fr = [int(r["frame"]) for r in rs]
+            axes[0].plot(fr, [to_float(r["mean_spp"]) for r in rs], color=c, label=m)
+            # Frame 0 compiles the shaders and warms up (100x a later frame): left out so the rest can be read.
+            axes[1].plot(fr[1:], [to_float(r["sss_ms"]) for r in rs[1:]], color=c, label=m)
+        rs = sorted((r for r in rows if r["method"] == "cv"), key=lambda r: int(r["frame"]))
+        lights = [parse_lights(r["lights"]) for r in rs]
+        for name in (lights[0].keys() if lights else []):
+            axes[2].step([int(r["frame"]) for r in rs], [l[name] for l in lights], where="post", label=name)
+        axes[0].set_ylabel("mean samples\nper SSS pixel")
+        axes[1].set_ylabel("SSS pass ms\n(from frame 1)")
+        axes[2].set_ylabel("light\nintensity")
+        axes[2].set_xlabel("frame")
+        axes[0].legend(fontsize=8, ncol=4)
+        axes[2].legend(fontsize=7, ncol=3)
+        for ax in axes:
+            ax.grid(True, alpha=0.3)
+        axes[0].set_title(f"{scene}: samples and SSS pass time per frame, quality mode ({device})", fontsize=10)
+        save_fig(fig, out_dir, f"switch-{scene}.png")
+
+
+def plot_heatmaps(heat_dir, frames, out_dir, device):
+    import numpy as np
+    plt = plt_module()
+    fig, axes = plt.subplots(len(frames), len(ADAPTIVE) + 1, figsize=(11, 2.7 * len(frames)))
+    for i, f in enumerate(frames):
+        for j, m in enumerate(ADAPTIVE):
+            counts = read_matrix(os.path.join(heat_dir, f"{m}.f{f}.samples.csv"))
+            mask = read_matrix(os.path.join(heat_dir, f"{m}.f{f}.mask.csv")) > 0.5
+            shown = np.where(mask, counts, np.nan)
+            im = axes[i][j].imshow(shown, cmap="inferno", vmin=0, vmax=DEFAULT_NMAX)
+            mean = counts[mask].mean() if mask.any() else 0.0
+            axes[i][j].set_title(f"{m}, frame {f}: mean N {mean:.1f}", fontsize=8)
+        fig.colorbar(im, ax=list(axes[i][:len(ADAPTIVE)]), shrink=0.8, label="samples")
+        alpha = read_matrix(os.path.join(heat_dir, f"cv.f{f}.alpha.csv"))
+        mask = read_matrix(os.path.join(heat_dir, f"cv.f{f}.mask.csv")) > 0.5
+        im = axes[i][-1].imshow(np.where(mask, alpha, np.nan), cmap="coolwarm", vmin=0, vmax=2)
+        axes[i][-1].set_title(f"cv alpha, frame {f}", fontsize=8)
+        fig.colorbar(im, ax=axes[i][-1], shrink=0.8)
+        for ax in axes[i]:
+            ax.set_xticks([]); ax.set_yticks([])
+    fig.suptitle(f"light-off: samples per pixel around the switch at frame {SWITCH_FRAME}, quality mode ({device})",
+                 fontsize=10)
+    save_fig(fig, out_dir, "heatmaps-light-off.png")
+
+
+def plot_scaling(groups, key, xlabel, name, out_dir, device):
+    plt = plt_module()
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4))
+    for m, by_x in groups.items():
+        xs = sorted(by_x)
+        axes[0].plot(xs, [median([to_float(r["sss_ms"]) for r in by_x[x]]) for x in xs], "o-", label=m)
+        axes[1].plot(xs, [mean_finite([to_float(r["mean_spp"]) for r in by_x[x]]) for x in xs], "o-", label=m)
+    for ax in axes:
+        ax.set_xscale("log"); ax.set_xlabel(xlabel); ax.grid(True, which="both", alpha=0.3)
+    axes[0].set_yscale("log")
+    axes[0].set_ylabel("SSS pass ms (median over frames 2..)")
+    axes[1].set_ylabel("mean samples per SSS pixel")
+    axes[0].legend(fontsize=8)
+    fig.suptitle(f"{name} ({device})", fontsize=10)
+    save_fig(fig, out_dir, f"{key}.png")
+
+
+# ---------------------------------------------------------------------------------------------------- assembling
+
 def replace_block(text, name, body):
     begin, end = f"<!-- BEGIN GENERATED: {name} -->", f"<!-- END GENERATED: {name} -->"
     i, j = text.find(begin), text.find(end)
@@ -521,109 +1102,233 @@ def replace_block(text, name, body):
     return text[:i + len(begin)] + "\n" + body.strip() + "\n" + text[j:]
 
 
-# ---------------------------------------------------------------------------------------------------- main
+def load_data(jobs, raw_dir, c):
+    d = Data(jobs, raw_dir)
+    d.scenes, d.groups, d.variations, d.variation_budgets = c.scenes, c.groups, c.variations, c.variation_budgets
+    return d
 
-def main():
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("--build", default=os.path.join(ROOT, "build"))
-    p.add_argument("--size", default="128x128", help="quality sweep size (default 128x128)")
-    p.add_argument("--seeds", default="1,2", help="seeds of the repeated quality runs (default 1,2)")
-    p.add_argument("--frames", type=int, default=0, help="frames per quality run (default: the scene's length)")
-    p.add_argument("--stages", default="quality,switch,heatmap,scaling,spread")
-    p.add_argument("--quick", action="store_true", help="small and short: for checking the script")
-    p.add_argument("--plots-only", action="store_true", help="redraw from docs/results/raw without rendering")
-    a = p.parse_args()
-    a.seeds = [int(s) for s in a.seeds.split(",")]
-    stages = set(a.stages.split(","))
-    if a.quick:
-        a.size, a.seeds, a.frames = "64x64", [1], 0
-    for exe in ("emcv-demo", "emcv-eval", "emcv-golden"):
-        if not a.plots_only and not os.access(os.path.join(a.build, "bin", exe), os.X_OK):
-            die(f"no {exe} in {a.build}/bin (cmake --build {a.build} --target emcv-demo emcv-eval emcv-golden)")
-    if os.access(os.path.join(a.build, "bin", "emcv-demo"), os.X_OK):
-        ADAPTIVE[:] = methods_from_table(a.build, "adaptive")
-    else:  # --plots-only without a build: the adaptive methods the raw quality runs rendered
-        ADAPTIVE[:] = sorted({r["method"] for r in read_csv(os.path.join(RAW, "quality.csv")) if r["knobs"] != "fixed"})
-    os.makedirs(RAW, exist_ok=True)
-    device_file = os.path.join(RAW, "device.txt")
-    cost_size = "64x64" if a.quick else "128x128"
 
-    with tempfile.TemporaryDirectory(prefix="emcv-eval-") as tmp:
-        if not a.plots_only:
-            head = subprocess.run(["git", "-C", ROOT, "describe", "--always", "--dirty"], capture_output=True, text=True)
-            write_atomically(os.path.join(RAW, "commit.txt"), (head.stdout.strip() or "unknown") + "\n")
-            if "quality" in stages:
-                save_rows("quality.csv", stage_quality(a, tmp))
-            if "switch" in stages:
-                rows = []
-                for scene, frames in (("light-off", 60), ("flicker", 48), ("club", 60)):
-                    print(f"  switch: {scene}", flush=True)
-                    rows += stage_cost(a, tmp, scene, ["separable-17"] + ADAPTIVE, cost_size, frames)
-                save_rows("switch.csv", rows)
-            if "heatmap" in stages:
-                print("  heatmap: light-off", flush=True)
-                heat = os.path.join(RAW, "heatmaps")
-                os.makedirs(heat, exist_ok=True)
-                stage_cost(a, tmp, "light-off", ADAPTIVE, cost_size, SWITCH_FRAME + 4,
-                           heatmaps=([SWITCH_FRAME - 1, SWITCH_FRAME + 3], heat))
-            if "spread" in stages:
-                save_rows("golden-seed-spread.csv", stage_spread(a, tmp))
-            if "scaling" in stages:
-                rows = []
-                sizes = SCALING_SIZES[:2] if a.quick else SCALING_SIZES
-                for w, h in sizes:
-                    print(f"  scaling: {w}x{h}", flush=True)
-                    rows += stage_cost(a, tmp, "static", COST_METHODS, f"{w}x{h}", 8)
-                save_rows("scaling-resolution.csv", rows)
-                rows = []
-                for k in (SCALING_RADII[:2] if a.quick else SCALING_RADII):
-                    print(f"  scaling: sss-scale {k}", flush=True)
-                    rows += stage_cost(a, tmp, "static", COST_METHODS, "256x256", 8, sss_scale=k)
-                save_rows("scaling-radius.csv", rows)
+def provenance(jobs, raw_dir):
+    """The commits, devices and runs the raw files name."""
+    commits, devices = [], []
+    for j in jobs:
+        path = os.path.join(j.raw(raw_dir), "job.txt") if j.stage == "heatmap" else j.raw(raw_dir)
+        h = header(path)
+        for lst, v in ((commits, h.get("commit")), (devices, h.get("device"))):
+            if v and v not in lst:
+                lst.append(v)
+    runs = []
+    for name in sorted(os.listdir(raw_dir)):
+        if name.startswith("run-") and name.endswith(".txt"):
+            with open(os.path.join(raw_dir, name)) as f:
+                runs.append(f.read().strip())
+    return commits, devices, runs
 
-    device = open(device_file).read().strip() if os.path.exists(device_file) else "unknown GL renderer"
-    commit_file = os.path.join(RAW, "commit.txt")
-    commit = open(commit_file).read().strip() if os.path.exists(commit_file) else "unknown"
-    load_file = os.path.join(RAW, "load.txt")
-    if not a.plots_only:
-        write_atomically(load_file, " ".join(f"{x:.1f}" for x in os.getloadavg()) + f" on {os.cpu_count()} CPUs\n")
-    load = open(load_file).read().strip() if os.path.exists(load_file) else "not recorded"
-    blocks = {"context": f"Renderer: **{device}** (GL_RENDERER), commit {commit}; load average (1, 5, 15 min) at "
-                         f"the end of the run: {load}."}
-    if os.path.exists(os.path.join(RAW, "quality.csv")):
-        rows = read_csv(os.path.join(RAW, "quality.csv"))
-        summary = summarize_quality(rows)
-        plot_pareto(summary, device)
-        blocks["teaser"] = teaser_table(rows)
-        blocks["pareto"] = pareto_table(summary)
-        write_atomically(os.path.join(RESULTS, "pareto.md"), blocks["pareto"] + "\n")
-    if os.path.exists(os.path.join(RAW, "switch.csv")):
-        rows = read_csv(os.path.join(RAW, "switch.csv"))
-        plot_switch({s: [r for r in rows if r["scene"] == s] for s in ("light-off", "flicker", "club")}, device)
+
+def assemble(jobs, raw_dir, c, out_dir, write_doc):
+    missing = missing_jobs(jobs, raw_dir)
+    if missing:
+        die(f"cannot merge: {len(missing)} of {len(jobs)} jobs have no raw file from this job list in "
+            f"{shown(raw_dir)}; run them (--shard, or without it) first:\n  " + "\n  ".join(missing))
+    commits, devices, runs = provenance(jobs, raw_dir)
+    device = devices[0] if devices else "unknown GL renderer"
+    d = load_data(jobs, raw_dir, c)
+    blocks = quality_blocks(d)
+    stages = {j.stage for j in jobs}
+    ms = cost_ms(d) if "cost" in stages else {}
+    if "quality" in stages:
+        plot_pareto(d, ms, out_dir, device)
+        plot_frames(d, out_dir, device)
+    if ms:
+        blocks["equal-time"] = equal_time_table(d, ms)
+        blocks["pareto-time"] = pareto_time_table(d, ms)
+    if "switch" in stages:
+        rows = stage_rows(d, "switch")
+        plot_switch({s: [r for r in rows if r["scene"] == s] for s in ("light-off", "flicker", "club")}, out_dir,
+                    device)
         blocks["switch"] = switch_table(rows)
-    if os.path.isdir(os.path.join(RAW, "heatmaps")):
-        plot_heatmaps(os.path.join(RAW, "heatmaps"), [SWITCH_FRAME - 1, SWITCH_FRAME + 3], device)
-        blocks["heatmaps"] = heatmap_table(os.path.join(RAW, "heatmaps"), [SWITCH_FRAME - 1, SWITCH_FRAME + 3])
-    if os.path.exists(os.path.join(RAW, "golden-seed-spread.csv")):
-        blocks["seed-spread"] = spread_table(read_csv(os.path.join(RAW, "golden-seed-spread.csv")))
-    if os.path.exists(os.path.join(RAW, "scaling-resolution.csv")):
-        g = plot_scaling(read_csv(os.path.join(RAW, "scaling-resolution.csv")), "scaling-resolution",
-                         "pixels (log)", "static: cost against resolution", device, pixels=True)
-        blocks["scaling-resolution"] = scaling_table(g, "pixels", lambda x: f"{x}") + "\n\n" + \
-            per_sss_pixel_table(g)
-        g = plot_scaling(read_csv(os.path.join(RAW, "scaling-radius.csv")), "scaling-radius",
-                         "mean free path scale (radius on screen, log)", "static at 256x256: cost against the "
-                         "scattering radius", device)
+        t = teaser_time_table(rows)
+        if t:
+            blocks["teaser-time"] = t
+    heat = [j for j in jobs if j.stage == "heatmap"]
+    if heat:
+        frames = heat[0].meta["frames"]
+        plot_heatmaps(heat[0].raw(raw_dir), frames, out_dir, device)
+        blocks["heatmaps"] = heatmap_table(heat[0].raw(raw_dir), frames)
+    if "scaling-resolution" in stages:
+        g = scaling_groups(stage_rows(d, "scaling-resolution"), pixels=True)
+        plot_scaling(g, "scaling-resolution", "pixels (log)", "static: cost against resolution", out_dir, device)
+        blocks["scaling-resolution"] = scaling_table(g, "pixels", lambda x: f"{x}") + "\n\n" + per_sss_pixel_table(g)
+    if "scaling-radius" in stages:
+        g = scaling_groups(stage_rows(d, "scaling-radius"), pixels=False)
+        plot_scaling(g, "scaling-radius", "mean free path scale (radius on screen, log)",
+                     "static at 256x256: cost against the scattering radius", out_dir, device)
         blocks["scaling-radius"] = scaling_table(g, "mfp scale", lambda x: f"{x:g}")
-    if os.path.exists(DOC) and not a.quick:
+    made = f"raw files made at commit {', '.join(commits) or 'unknown'}, assembled at {git_commit()}"
+    context = (f"Renderer: **{device}** (GL_RENDERER), {made}. Runs (command, shard, jobs, wall time, load average "
+               f"1/5/15 min at the end):\n\n" + "\n".join(f"- {r}" for r in runs))
+    for name, file in (("pareto-quality", "pareto.md"), ("pareto-time", "pareto-time.md")):
+        if name in blocks:
+            write_atomically(os.path.join(out_dir, file),
+                             f"<!-- Generated by scripts/eval/run_eval.py at {made}: do not edit. -->\n\n"
+                             + blocks.pop(name) + "\n")
+    if write_doc and os.path.exists(DOC):
         text = open(DOC).read()
+        note = f"_run_eval.py, {made}; command and run: the context block._\n\n"
+        text = replace_block(text, "context", context)
         for name, body in blocks.items():
             if f"<!-- BEGIN GENERATED: {name} -->" in text:
-                text = replace_block(text, name, body)
+                text = replace_block(text, name, note + body)
+            else:
+                print(f"run_eval.py: docs/results.md has no GENERATED block '{name}' (printed below only)")
         write_atomically(DOC, text)
+    print(f"\n## context\n{context}")
     for name, body in blocks.items():
         print(f"\n## {name}\n{body}")
 
 
+# ---------------------------------------------------------------------------------------------------- main
+
+def parse_shard(text):
+    m = re.fullmatch(r"(\d+)/(\d+)", text or "")
+    if not m:
+        die(f"--shard must be I/N with whole numbers 0 <= I < N (got '{text}')")
+    i, n = int(m.group(1)), int(m.group(2))
+    if n < 1 or i >= n:
+        die(f"--shard I/N needs N >= 1 and 0 <= I < N (got {i}/{n})")
+    return i, n
+
+
+def parse_args(argv):
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("--build", default=os.path.join(ROOT, "build"))
+    p.add_argument("--size", default="128x128", help="size of the quality and cost jobs (default 128x128)")
+    p.add_argument("--seeds", default="1,2", help="seeds of the quality runs (default 1,2)")
+    p.add_argument("--stages", default=",".join(QUALITY_STAGES + TIMING_STAGES),
+                   help="stages to run and assemble (default: all)")
+    p.add_argument("--jobs", default="1", help="quality jobs run at once (default 1); timing jobs always one")
+    p.add_argument("--shard", default=None, help="I/N: run only the jobs whose index %% N == I")
+    p.add_argument("--raw-dir", default=None, help="raw CSVs (default docs/results/raw; with --quick a temp dir)")
+    p.add_argument("--merge", action="store_true", help="render nothing: assemble tables and plots from the raw "
+                                                        "files of every shard")
+    p.add_argument("--plots-only", action="store_true", help="the same as --merge")
+    p.add_argument("--resume", action="store_true", help="run only the selected jobs whose raw file is missing "
+                                                         "or was made by another command")
+    p.add_argument("--list", action="store_true", help="print the job list (index, stage/name, kind, command; "
+                                                      "with --shard, that shard's) and exit")
+    p.add_argument("--quick", action="store_true", help="64x64, light-off and flicker, one seed: for checks")
+    p.add_argument("--check-determinism", action="store_true",
+                   help="run the --quick quality jobs with --jobs 1 and --jobs 2 into two temporary raw folders "
+                        "and require byte-identical quality tables")
+    a = p.parse_args(argv)
+    try:
+        a.jobs = int(a.jobs)
+    except ValueError:
+        die(f"--jobs must be a whole number >= 1 (got '{a.jobs}')")
+    if a.jobs < 1:
+        die(f"--jobs must be >= 1 (got {a.jobs})")
+    a.shard = parse_shard(a.shard) if a.shard is not None else None
+    try:
+        a.seeds = [int(s) for s in a.seeds.split(",")]
+    except ValueError:
+        die(f"--seeds must be whole numbers separated by commas (got '{a.seeds}')")
+    if not re.fullmatch(r"[1-9]\d*x[1-9]\d*", a.size):
+        die(f"--size must be WxH (got '{a.size}')")
+    a.stages = a.stages.split(",")
+    known = QUALITY_STAGES + TIMING_STAGES
+    bad = [s for s in a.stages if s not in known]
+    if bad:
+        die(f"--stages: unknown {', '.join(bad)} (known: {', '.join(known)})")
+    if "quality" in a.stages or "variations" in a.stages:
+        if "lights" not in a.stages:
+            a.stages.insert(0, "lights")  # the light changes the quality tables are measured from
+    if a.quick:
+        a.size, a.seeds = "64x64", a.seeds[:1]
+    a.merge = a.merge or a.plots_only
+    return a
+
+
+def check_tools(build, jobs):
+    for tool in sorted({j.tool for j in jobs}):
+        if not os.access(os.path.join(build, "bin", tool), os.X_OK):
+            die(f"no {tool} in {build}/bin (cmake --build {build} --target emcv-demo emcv-eval emcv-golden)")
+    demo = os.path.join(build, "bin", "emcv-demo")
+    if os.access(demo, os.X_OK):
+        listed = subprocess.run([demo, "--list-methods"], capture_output=True, text=True).stdout
+        adaptive = [l.split("\t")[0] for l in listed.splitlines() if l.split("\t")[1:2] == ["adaptive"]]
+        if adaptive != ADAPTIVE:
+            die(f"emcv-demo --list-methods names the adaptive methods {adaptive}, this script knows {ADAPTIVE}")
+
+
+def shard_jobs(a, jobs):
+    """The jobs of --shard I/N: those whose index % N == I (every job without --shard)."""
+    return [j for j in jobs if a.shard is None or j.index % a.shard[1] == a.shard[0]]
+
+
+def render(a, jobs, raw_dir, workers):
+    selected = shard_jobs(a, jobs)
+    if a.resume:
+        stale = {m.split(" ", 1)[0] for m in missing_jobs(selected, raw_dir)}
+        selected = [j for j in selected if str(j.index) in stale]
+    check_tools(a.build, selected)
+    start = time.monotonic()
+    with tempfile.TemporaryDirectory(prefix="emcv-eval-") as tmp:
+        ctx = Context(a.build, raw_dir, tmp)
+        print(f"run_eval.py: {len(selected)} of {len(jobs)} jobs"
+              f"{'' if a.shard is None else f' (shard {a.shard[0]}/{a.shard[1]})'}, {workers} at a time "
+              f"(timing jobs one at a time), raw files in {shown(raw_dir)}", flush=True)
+        run_jobs(ctx, selected, workers)
+    return selected, time.monotonic() - start
+
+
+def check_determinism(a):
+    c = Config("64x64", a.seeds[:1], True, ["lights", "quality", "variations"])
+    jobs = job_list(c)
+    tables = []
+    with tempfile.TemporaryDirectory(prefix="emcv-eval-check-") as tmp:
+        for workers in (1, 2):
+            raw = os.path.join(tmp, f"jobs{workers}")
+            a.shard, a.resume = None, False
+            render(a, jobs, raw, workers)
+            blocks = quality_blocks(load_data(jobs, raw, c))
+            tables.append("".join(f"## {k}\n{v}\n" for k, v in blocks.items()))
+    if tables[0] != tables[1]:
+        sys.stdout.writelines(difflib.unified_diff(tables[0].splitlines(True), tables[1].splitlines(True),
+                                                   "--jobs 1", "--jobs 2"))
+        die("the quality tables of --jobs 2 differ from those of --jobs 1 (diff above)")
+    print(f"run_eval.py: the quality tables of --jobs 1 and --jobs 2 are byte-identical "
+          f"({len(tables[0])} bytes, {len(jobs)} jobs at {c.size})")
+
+
+def main(argv):
+    a = parse_args(argv)
+    if a.check_determinism:
+        check_determinism(a)
+        return
+    c = Config(a.size, a.seeds, a.quick, a.stages)
+    jobs = job_list(c)
+    if a.list:
+        for j in shard_jobs(a, jobs):
+            print(f"{j.index}\t{j.stage}/{j.name}\t{'timing' if j.serial else 'quality'}\t{j.command_text()}")
+        return
+    raw_dir = os.path.abspath(a.raw_dir or (os.path.join(tempfile.gettempdir(), "emcv-eval-quick") if a.quick
+                                            else DEFAULT_RAW))
+    default = raw_dir == DEFAULT_RAW and not a.quick
+    out_dir = RESULTS if default else os.path.join(raw_dir, "out")
+    if not a.merge:
+        selected, wall = render(a, jobs, raw_dir, a.jobs)
+        shard = "all" if a.shard is None else f"{a.shard[0]}-of-{a.shard[1]}"
+        load = " ".join(f"{x:.1f}" for x in os.getloadavg())
+        write_atomically(os.path.join(raw_dir, f"run-{shard}.txt"),
+                         f"`{' '.join(['/usr/bin/python3 scripts/eval/run_eval.py'] + argv)}`: shard {shard}, "
+                         f"{len(selected)} jobs, --jobs {a.jobs}, {wall / 60:.1f} min, load {load} on "
+                         f"{os.cpu_count()} CPUs\n")
+        if a.shard is not None and missing_jobs(jobs, raw_dir):
+            print(f"run_eval.py: shard {a.shard[0]}/{a.shard[1]} done; once every shard's raw files are in "
+                  f"{shown(raw_dir)}, assemble with --merge")
+            return
+    assemble(jobs, raw_dir, c, out_dir, default)
+
+
 if __name__ == "__main__":
-    main()
+    main(sys.argv[1:])
