@@ -20,6 +20,10 @@ for exe in emcv-glinfo emcv-demo emcv-eval; do
   [ -x "$bin/$exe" ] || { echo "gpu_runs.sh: $bin/$exe not found" >&2; exit 2; }
 done
 mkdir -p "$out"
+# The commit the runs are made at, for gpu_report.py's provenance line: git's where the tree is a checkout, else
+# EMCV_COMMIT (set it when the tree was copied without .git, as onto a lent GPU machine).
+git -C "$(dirname "$0")/../.." describe --always --dirty 2>/dev/null > "$out/commit.txt" ||
+  echo "${EMCV_COMMIT:-unknown}" > "$out/commit.txt"
 "$bin/emcv-glinfo" > "$out/glinfo.txt"
 teaser_methods=diffuse,separable-17,burley-16,spvg,cv,cv-notex
 for size in 1920x1080 3360x1440; do
