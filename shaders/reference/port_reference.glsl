@@ -128,8 +128,11 @@ void main() {
     vec3 history = emcv_rgb_to_ycocg(previous.rgb) * (taps.x + taps.y + taps.z + taps.w);
     vec3 lo, hi;
     emcv_resolve_clip_box(shown, shown * shown, 1.0f, shown, lo, hi);
+    // The clip's target: the current value filtered over a neighbourhood (here the pixel alone, weight 1/4 of the
+    // 3x3 filter's 4/4 at the centre, renormalised), clipped into the box towards the current value.
+    const vec3 target = emcv_resolve_clip(shown * (emcv_resolve_filter_weight(0, 0) * 4.0f), shown, lo, hi);
     if (emcv_resolve_same_surface(previous.a, frame.camera.w))
-        history = emcv_resolve_blend(emcv_resolve_clip(history, lo, hi), shown, EMCV_RESOLVE_BLEND);
+        history = emcv_resolve_blend(emcv_resolve_clip(history, target, lo, hi), shown, EMCV_RESOLVE_BLEND);
     else
         history = shown;
     imageStore(display, texel, vec4(emcv_ycocg_to_rgb(history), 1.0f));

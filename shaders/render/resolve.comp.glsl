@@ -6,8 +6,8 @@
 // last frame's resolved value at the reprojected position (motion vectors; Catmull-Rom over the 4x4 texels around
 // it, as engines sample their history so that resampling it every frame does not blur it, each texel only
 // where its stored view depth shows this surface, emcv_resolve_same_surface; less than half of the kernel's
-// weight there: reset to the current value), clipped to
-// the neighbourhood's box in YCoCg and blended (include/emcv/port/resolve.h). The history keeps the resolved
+// weight there: reset to the current value), clipped towards the current value filtered over its 3x3 neighbours
+// (emcv_resolve_filter_weight) to the neighbourhood's box in YCoCg and blended (include/emcv/port/resolve.h). The history keeps the resolved
 // value and the pixel's view depth (0 for the background, which is never blended: it does not change).
 #version 450 core
 
@@ -73,17 +73,19 @@ void main() {
     vec3 resolved = current;
     vec3 history;
     if (depth > 0.0f && reprojected_history(p, depth, history)) {
-        vec3 sum = vec3(0.0f), sum_squares = vec3(0.0f);
+        vec3 sum = vec3(0.0f), sum_squares = vec3(0.0f), filtered = vec3(0.0f);
         for (int dy = -1; dy <= 1; ++dy) {
             for (int dx = -1; dx <= 1; ++dx) {
                 vec3 v = tile_ycocg[(local.x + dx) + (local.y + dy) * APRON_SIDE];
                 sum += v;
                 sum_squares += v * v;
+                filtered += emcv_resolve_filter_weight(dx, dy) * v;
             }
         }
         vec3 lo, hi;
         emcv_resolve_clip_box(sum, sum_squares, 9.0f, current, lo, hi);
-        resolved = emcv_resolve_blend(emcv_resolve_clip(history, lo, hi), current, float(EMCV_RESOLVE_BLEND));
+        vec3 target = emcv_resolve_clip(filtered, current, lo, hi);
+        resolved = emcv_resolve_blend(emcv_resolve_clip(history, target, lo, hi), current, float(EMCV_RESOLVE_BLEND));
     }
     imageStore(history_out, p, vec4(resolved, depth));
     imageStore(resolved_out, p, vec4(clamp(emcv_ycocg_to_rgb(resolved), 0.0f, 1.0f), 1.0f));

@@ -56,18 +56,36 @@ EMCV_FN void emcv_resolve_clip_box(EMCV_IN(vec3) sum, EMCV_IN(vec3) sum_squares,
     hi = max(mean + float(EMCV_RESOLVE_CLIP_SIGMA) * deviation, current);
 }
 
-/// The history moved along the line towards the box's centre until it lies in the box [lo, hi] (a clip, not a
-/// per-channel clamp: the clipped colour stays on the line between the history and the neighbourhood's mean,
-/// so no hue the neighbourhood lacks appears). Inside the box the history is kept unchanged. The box is at least
-/// half an 8-bit display step wide on every side: a flat channel (zero spread) would otherwise clip the history's
-/// rounding error and pull a still pixel towards its neighbours, by differences the display cannot show.
-EMCV_FN vec3 emcv_resolve_clip(EMCV_IN(vec3) history, EMCV_IN(vec3) lo, EMCV_IN(vec3) hi) {
+/// The history moved along the line towards `target`, a colour inside the box [lo, hi], until it lies in the box
+/// (a clip, not a per-channel clamp): the clipped colour is a mix of the history and the target, never a hue
+/// that neither holds. The resolve's target is the pixel's current value filtered over its 3x3 neighbourhood
+/// (emcv_resolve_filter_weight), itself clipped towards the current value into the box: an estimate of what
+/// this frame shows at the pixel with less noise than the pixel alone. Clipping towards the box's centre, the
+/// neighbourhood's plain mean, pulls edges and relief towards their neighbours' average, a blur the next frames
+/// keep; towards the raw current value, it keeps more of that value's noise (both measured, docs/frame.md
+/// "Temporal resolve"). Inside the box the history is kept unchanged. The box is at least half an 8-bit display
+/// step wide on every side: a flat channel (zero spread) would otherwise clip the history's rounding error and
+/// pull a still pixel off its value, by differences the display cannot show.
+EMCV_FN vec3 emcv_resolve_clip(EMCV_IN(vec3) history, EMCV_IN(vec3) target, EMCV_IN(vec3) lo, EMCV_IN(vec3) hi) {
     vec3 centre = 0.5f * (lo + hi);
     vec3 extent = max(0.5f * (hi - lo), vec3(0.5f / 255.0f));
-    vec3 offset = history - centre;
-    vec3 reach = abs(offset) / extent;
-    float farthest = max(reach.x, max(reach.y, reach.z));
-    return farthest > 1.0f ? centre + offset / farthest : history;
+    vec3 low = centre - extent;
+    vec3 high = centre + extent;
+    vec3 offset = history - target;
+    // The largest t in [0, 1] with target + t offset inside [low, high], channel by channel.
+    float t = 1.0f;
+    for (int c = 0; c < 3; ++c) {
+        if (offset[c] > 0.0f) t = min(t, (high[c] - target[c]) / offset[c]);
+        if (offset[c] < 0.0f) t = min(t, (low[c] - target[c]) / offset[c]);
+    }
+    return target + max(t, 0.0f) * offset;
+}
+
+/// The weight of the neighbour at (dx, dy), each in {-1, 0, 1}, in the 3x3 filter of the clip's target: the
+/// binomial (1 2 1) x (1 2 1) / 16, the smallest separable low-pass that keeps the pixel itself the heaviest tap
+/// (a Gaussian of about 0.7 px, as engines filter the current frame for their clip).
+EMCV_FN float emcv_resolve_filter_weight(int dx, int dy) {
+    return float((2 - abs(dx)) * (2 - abs(dy))) * 0.0625f;
 }
 
 /// The Catmull-Rom weights of the four texels around a sample at fraction t in [0, 1) past the second texel

@@ -1,0 +1,111 @@
+// SPDX-License-Identifier: MIT
+// The temporal resolve's clip (include/emcv/port/resolve.h, emcv_resolve_clip) on the CPU, towards a target in the box
+// (the renderer's: the filtered current value; here also the current value itself): a history inside the
+// box is kept, one outside is moved along the line to the pixel's current value until it reaches the box, so the
+// clipped colour is a mix of the two (never the neighbourhood's mean, which would blur), and a flat channel's
+// box is half an 8-bit step wide.
+#include <catch2/catch_test_macros.hpp>
+
+#include <cmath>
+#include <random>
+
+#include <emcv/port/resolve.h>
+
+namespace port = emcv::port;
+
+namespace {
+
+constexpr float half_step = 0.5f / 255.0f;
+
+bool inside(const glm::vec3& v, const glm::vec3& lo, const glm::vec3& hi, float slack) {
+    for (int c = 0; c < 3; ++c)
+        if (v[c] < lo[c] - slack || v[c] > hi[c] + slack) return false;
+    return true;
+}
+
+}  // namespace
+
+TEST_CASE("resolve clip: a history inside the box is kept as it is") {
+    const glm::vec3 lo(0.1f, -0.2f, -0.1f), hi(0.6f, 0.2f, 0.1f), current(0.3f, 0.0f, 0.05f);
+    const glm::vec3 history(0.55f, -0.15f, 0.0f);
+    CHECK(port::emcv_resolve_clip(history, current, lo, hi) == history);
+}
+
+TEST_CASE("resolve clip: a history outside the box moves towards the current value, not the box's centre") {
+    // Box [0, 1]^3, current near a corner, history beyond one face. Towards the current value: t = 0.1 / 1.1
+    // along history - current. Towards the centre (0.5, 0.5, 0.5) the result would be (1, 0.5, 0.5): a colour
+    // pulled to the neighbourhood's mean in the second channel, which neither the history nor the pixel holds.
+    const glm::vec3 lo(0.0f), hi(1.0f), current(0.9f, 0.9f, 0.5f), history(2.0f, 0.5f, 0.5f);
+    const glm::vec3 clipped = port::emcv_resolve_clip(history, current, lo, hi);
+    const float t = 0.1f / 1.1f;
+    CHECK(std::fabs(clipped.x - 1.0f) < 1e-6f);
+    CHECK(std::fabs(clipped.y - (0.9f - 0.4f * t)) < 1e-6f);
+    CHECK(clipped.z == 0.5f);
+}
+
+TEST_CASE("resolve clip: over random boxes the result is on the segment from the current value to the history, "
+          "in the box, and as far along it as the box allows") {
+    std::mt19937 rng(20261202u);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    int moved = 0;
+    for (int i = 0; i < 2000; ++i) {
+        const glm::vec3 a(unit(rng), unit(rng), unit(rng)), b(unit(rng), unit(rng), unit(rng));
+        const glm::vec3 lo = glm::min(a, b), hi = glm::max(a, b);
+        // The current value in the box (the box grown to hold it, as emcv_resolve_clip_box makes it).
+        const glm::vec3 w(0.5f * (unit(rng) + 1.0f), 0.5f * (unit(rng) + 1.0f), 0.5f * (unit(rng) + 1.0f));
+        const glm::vec3 current = lo + w * (hi - lo);
+        const glm::vec3 history(2.0f * unit(rng), 2.0f * unit(rng), 2.0f * unit(rng));
+        const glm::vec3 clipped = port::emcv_resolve_clip(history, current, lo, hi);
+        INFO("case " << i);
+        // The box the clip works in: [lo, hi] widened to half an 8-bit step around its centre where narrower.
+        const glm::vec3 centre = 0.5f * (lo + hi);
+        const glm::vec3 extent = glm::max(0.5f * (hi - lo), glm::vec3(half_step));
+        REQUIRE(inside(clipped, centre - extent, centre + extent, 1e-5f));
+        const glm::vec3 along = history - current, taken = clipped - current;
+        const float length2 = glm::dot(along, along);
+        if (length2 == 0.0f) continue;
+        const float t = glm::dot(taken, along) / length2;
+        CHECK(t >= -1e-6f);
+        CHECK(t <= 1.0f + 1e-6f);
+        CHECK(glm::length(taken - t * along) <= 1e-5f * (1.0f + std::sqrt(length2)));  // on the segment
+        if (t < 1.0f - 1e-5f) {
+            ++moved;
+            // Stopped at the box: one channel sits on its face.
+            bool on_face = false;
+            for (int c = 0; c < 3; ++c)
+                on_face = on_face || std::fabs(clipped[c] - (centre[c] - extent[c])) < 1e-5f ||
+                          std::fabs(clipped[c] - (centre[c] + extent[c])) < 1e-5f;
+            CHECK(on_face);
+        } else {
+            CHECK(inside(history, centre - extent, centre + extent, 1e-5f));
+        }
+    }
+    CHECK(moved > 1000);  // most random histories start outside: the clipping branch is what was tested
+}
+
+TEST_CASE("resolve clip: a flat channel keeps half an 8-bit step either side of its value") {
+    const glm::vec3 current(0.5f, 0.0f, 0.0f);
+    const glm::vec3 near(0.5f + 0.4f / 255.0f, 0.0f, 0.0f), far(0.5f + 2.0f / 255.0f, 0.0f, 0.0f);
+    CHECK(port::emcv_resolve_clip(near, current, current, current) == near);
+    const glm::vec3 clipped = port::emcv_resolve_clip(far, current, current, current);
+    CHECK(std::fabs(clipped.x - (0.5f + half_step)) < 1e-6f);
+    CHECK(clipped.y == 0.0f);
+    CHECK(clipped.z == 0.0f);
+}
+
+TEST_CASE("resolve clip target filter: the 3x3 weights sum to 1, are symmetric and peak at the pixel") {
+    float sum = 0.0f;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            const float w = port::emcv_resolve_filter_weight(dx, dy);
+            sum += w;
+            CHECK(w > 0.0f);
+            CHECK(w == port::emcv_resolve_filter_weight(-dx, dy));
+            CHECK(w == port::emcv_resolve_filter_weight(dy, dx));
+            if (dx != 0 || dy != 0) CHECK(w < port::emcv_resolve_filter_weight(0, 0));
+        }
+    CHECK(sum == 1.0f);
+    // Separable: w(dx, dy) w(0, 0) = w(dx, 0) w(0, dy).
+    CHECK(port::emcv_resolve_filter_weight(1, 1) * port::emcv_resolve_filter_weight(0, 0) ==
+          port::emcv_resolve_filter_weight(1, 0) * port::emcv_resolve_filter_weight(0, 1));
+}
