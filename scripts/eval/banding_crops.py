@@ -11,9 +11,7 @@ structure (bands along the shadow edges), burley's is noise; the PSNR says the o
                                                    [--gain 8] [--out docs/images/banding-static.png]
 """
 import argparse
-import csv
 import os
-import subprocess
 import sys
 import tempfile
 
@@ -24,7 +22,10 @@ import matplotlib.image as mpimg  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import demo_figure  # noqa: E402  (the emcv-demo run and the atomic save both picture scripts use)
+
+ROOT = demo_figure.ROOT
 
 
 def main():
@@ -44,11 +45,7 @@ def main():
     with tempfile.TemporaryDirectory(prefix="emcv-banding-") as tmp:
         cmd = [demo, "--scene", "static", "--method", ",".join(methods), "--size", a.size, "--frames",
                str(a.frame + 1), "--resolve", "taa", "--out", tmp]
-        done = subprocess.run(cmd, capture_output=True, text=True)
-        if done.returncode != 0:
-            sys.exit("banding_crops.py: %s failed:\n%s" % (" ".join(cmd), done.stderr))
-        with open(os.path.join(tmp, "metrics.csv")) as f:
-            rows = {(r["method"], int(r["frame"])): r for r in csv.DictReader(f)}
+        rows = demo_figure.render("banding_crops.py", cmd)
 
         def image(method, kind):
             stem = "frame" if kind == "raw" else "resolved"
@@ -80,11 +77,7 @@ def main():
         fig.suptitle("static %s, frame %d: separable's bands against burley's noise (PSNR: whole frame)"
                      % (a.size, a.frame), fontsize=9)
         fig.tight_layout(rect=(0, 0, 1, 0.98))
-        fig.savefig(a.out + ".tmp.png", dpi=110)
-        plt.close(fig)
-    os.replace(a.out + ".tmp.png", a.out)
-    print("banding_crops.py: wrote %s (%s)" % (os.path.relpath(a.out, ROOT), " ".join(
-        ["build/bin/emcv-demo"] + cmd[1:-2] + ["--out", "DIR"])))
+        demo_figure.save("banding_crops.py", fig, a.out, cmd)
 
 
 if __name__ == "__main__":

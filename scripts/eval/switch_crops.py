@@ -11,9 +11,7 @@ there to show it.
                                                   [--out docs/images/switch-crops.png]
 """
 import argparse
-import csv
 import os
-import subprocess
 import sys
 import tempfile
 
@@ -23,7 +21,10 @@ matplotlib.use("Agg")
 import matplotlib.image as mpimg  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import demo_figure  # noqa: E402  (the emcv-demo run and the atomic save both picture scripts use)
+
+ROOT = demo_figure.ROOT
 SWITCH = 30  # light-off's key light switches off at frame 30 (demo/scenes/light-off.json)
 
 
@@ -41,11 +42,7 @@ def main():
     with tempfile.TemporaryDirectory(prefix="emcv-crops-") as tmp:
         cmd = [demo, "--scene", "light-off", "--method", ",".join(methods), "--spp-budget", str(a.budget),
                "--size", a.size, "--frames", str(after + 1), "--resolve", "taa", "--out", tmp]
-        done = subprocess.run(cmd, capture_output=True, text=True)
-        if done.returncode != 0:
-            sys.exit("switch_crops.py: %s failed:\n%s" % (" ".join(cmd), done.stderr))
-        with open(os.path.join(tmp, "metrics.csv")) as f:
-            rows = {(r["method"], int(r["frame"])): r for r in csv.DictReader(f)}
+        rows = demo_figure.render("switch_crops.py", cmd)
 
         def crop(path):
             img = mpimg.imread(path)[..., :3]
@@ -74,11 +71,7 @@ def main():
         fig.suptitle("light-off %s, budget %d: frame %d (before the switch) and frame %d (%d after); "
                      "PSNR of the whole frame" % (a.size, a.budget, before, after, a.after), fontsize=9)
         fig.tight_layout(rect=(0, 0, 1, 0.97))
-        fig.savefig(a.out + ".tmp.png", dpi=110)
-        plt.close(fig)
-    os.replace(a.out + ".tmp.png", a.out)
-    print("switch_crops.py: wrote %s (%s)" % (os.path.relpath(a.out, ROOT), " ".join(
-        ["build/bin/emcv-demo"] + cmd[1:-2] + ["--out", "DIR"])))
+        demo_figure.save("switch_crops.py", fig, a.out, cmd)
 
 
 if __name__ == "__main__":

@@ -6,9 +6,10 @@
 // last frame's resolved value at the reprojected position (motion vectors; Catmull-Rom over the 4x4 texels around
 // it, as engines sample their history so that resampling it every frame does not blur it, each texel only
 // where its stored view depth shows this surface, emcv_resolve_same_surface; less than half of the kernel's
-// weight there: reset to the current value), clipped towards the current value filtered over its 3x3 neighbours
-// (emcv_resolve_filter_weight) to the neighbourhood's box in YCoCg and blended (include/emcv/port/resolve.h). The history keeps the resolved
-// value and the pixel's view depth (0 for the background, which is never blended: it does not change).
+// weight there: reset to the current value), clipped to the neighbourhood's box in YCoCg towards the current
+// value filtered over its 3x3 neighbours (emcv_resolve_filter_weight), and blended
+// (include/emcv/port/resolve.h). The history keeps the resolved value and the pixel's view depth (0 for the
+// background, which is never blended: it does not change).
 #version 450 core
 
 #include "emcv/port/resolve.h"

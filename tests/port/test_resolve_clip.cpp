@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
-// The temporal resolve's clip (include/emcv/port/resolve.h, emcv_resolve_clip) on the CPU, towards a target in the box
-// (the renderer's: the filtered current value; here also the current value itself): a history inside the
-// box is kept, one outside is moved along the line to the pixel's current value until it reaches the box, so the
-// clipped colour is a mix of the two (never the neighbourhood's mean, which would blur), and a flat channel's
-// box is half an 8-bit step wide.
+// The temporal resolve's clip (include/emcv/port/resolve.h, emcv_resolve_clip) on the CPU, towards a target in
+// the box (the renderer's: the filtered current value; here the current value itself): a history inside the box
+// is kept, one outside is moved along the line to the target until it reaches the box, so the clipped colour is
+// a mix of the two (never the neighbourhood's mean, which would blur), and a flat channel's box is half an
+// 8-bit step wide. Also the target filter's weights.
 #include <catch2/catch_test_macros.hpp>
 
 #include <cmath>
