@@ -1301,6 +1301,20 @@ def check_determinism(a):
           f"({len(tables[0])} bytes, {len(jobs)} jobs at {c.size})")
 
 
+def run_file_name(shard, stages, raw_dir, resume):
+    """The file that records a run (its command, jobs, time and load) for the context block. A run of some
+    stages (--stages) gets a name of its own, so that it does not replace the record of the run that made the
+    other stages' raw files; a run of every stage (not --resume) remade all of its shard's raw files, so the
+    records of this shard's earlier stage runs are removed."""
+    if set(stages) == set(QUALITY_STAGES + TIMING_STAGES):
+        if not resume:
+            for name in os.listdir(raw_dir):
+                if name.startswith(f"run-{shard}-stages-") and name.endswith(".txt"):
+                    os.remove(os.path.join(raw_dir, name))
+        return f"run-{shard}.txt"
+    return f"run-{shard}-stages-{'+'.join(stages)}.txt"
+
+
 def main(argv):
     a = parse_args(argv)
     if a.check_determinism:
@@ -1320,7 +1334,7 @@ def main(argv):
         selected, wall = render(a, jobs, raw_dir, a.jobs)
         shard = "all" if a.shard is None else f"{a.shard[0]}-of-{a.shard[1]}"
         load = " ".join(f"{x:.1f}" for x in os.getloadavg())
-        write_atomically(os.path.join(raw_dir, f"run-{shard}.txt"),
+        write_atomically(os.path.join(raw_dir, run_file_name(shard, a.stages, raw_dir, a.resume)),
                          f"`{' '.join(['/usr/bin/python3 scripts/eval/run_eval.py'] + argv)}`: shard {shard}, "
                          f"{len(selected)} jobs, --jobs {a.jobs}, {wall / 60:.1f} min, load {load} on "
                          f"{os.cpu_count()} CPUs\n")

@@ -4,6 +4,8 @@
   - --shard I/N splits it: the shards are disjoint, their union is the whole list, shard I holds index % N == I;
   - bad --jobs / --shard values are refused with a message naming the option;
   - --merge over a raw folder that lacks jobs refuses and names them;
+  - a run of some stages records itself under a name of its own (the record of the run that made the other
+    stages' raw files stays, for the context block), and a later run of every stage removes those records;
   - --check-determinism: the --quick quality jobs run with --jobs 1 and with --jobs 2 into two raw folders give
     byte-identical quality tables (PSNR raw and resolved, samples, lag).
 
@@ -37,7 +39,24 @@ def listing(build, *args):
     return [line.split("\t") for line in r.stdout.splitlines()]
 
 
+def check_run_records():
+    sys.path.insert(0, os.path.dirname(SCRIPT))
+    import run_eval
+    every = run_eval.QUALITY_STAGES + run_eval.TIMING_STAGES
+    with tempfile.TemporaryDirectory() as raw:
+        full = run_eval.run_file_name("all", every, raw, False)
+        timing = run_eval.run_file_name("all", run_eval.TIMING_STAGES, raw, False)
+        check(full != timing, f"a timing-only run's record ({timing}) does not replace the full run's ({full})")
+        for name in (full, timing):
+            open(os.path.join(raw, name), "w").close()
+        check(run_eval.run_file_name("all", list(reversed(every)), raw, True) == full and
+              os.path.exists(os.path.join(raw, timing)), "a --resume run of every stage keeps the stage records")
+        run_eval.run_file_name("all", every, raw, False)
+        check(not os.path.exists(os.path.join(raw, timing)), "a run of every stage removes the stage records")
+
+
 def main(build):
+    check_run_records()
     full = listing(build)
     check(len(full) > 20, f"the full job list has more than 20 jobs (got {len(full)})")
     check(full == listing(build), "two listings of the job list agree")
