@@ -137,6 +137,9 @@ public:
 
     history_py copy() const { return *this; }
 
+    /// The budget's frame statistics carried from one plan_frame to the next (emcv::budget_prior).
+    emcv::budget_prior& prior() noexcept { return prior_; }
+
 private:
     static EmcvEmcm2 empty_state(const std::vector<EmcvEmcm2>&) { return emcv::port::emcv_emcm2_init(); }
     static EmcvMovingStats empty_state(const std::vector<EmcvMovingStats>&) { return emcv::port::emcv_moving_stats_init(); }
@@ -144,6 +147,7 @@ private:
     std::size_t width_, height_;
     emcv::sampling_estimator estimator_;
     std::variant<std::vector<EmcvEmcm2>, std::vector<EmcvMovingStats>> states_;
+    emcv::budget_prior prior_;  // plan_frame's, under a budget: last frame's statistics
 };
 
 // The structured dtypes of the history views: the port's structs, field by field (their layout is checked here,
@@ -234,7 +238,7 @@ py::object plan_frame_py(const sampling_params_py& params, history_py& history, 
         py::gil_scoped_release unlocked;
         plan = history.visit([&](auto& states) {
             return emcv::plan_frame(params.get(), states.data(), history.pixels(), w, material_data, sub_pixel_data,
-                                    frame, seed, sigma2_data, counts_data);
+                                    frame, seed, sigma2_data, counts_data, history.prior());
         });
     }
     py::object frame_plan = py::module_::import("emcv").attr("FramePlan");
@@ -368,7 +372,9 @@ PYBIND11_MODULE(emcv, m) {
           "emcv::plan_frame: each pixel's pooled per-sample variance and count for this frame, from the history "
           "before this frame's push. material: uint32 (height, width), 0 where a pixel does not scatter (None: "
           "all scatter, one material); sub_pixel: uint8 or bool, non-zero for sub-pixel kernels (None: none); "
-          "frame and seed salt the budget's stochastic rounding. Returns FramePlan(counts, sigma2, lambda_, samples).");
+          "frame and seed salt the budget's stochastic rounding. Under a budget each pooled variance is shrunk towards "
+          "the statistics of the history's previous plan_frame (kept in the History; none before its first) and "
+          "this frame's replace them. Returns FramePlan(counts, sigma2, lambda_, samples).");
     m.def("sampling_update", &sampling_update_py, py::arg("params"), py::arg("history"), py::arg("f"), py::arg("g"),
           py::arg("counts"),
           "emcv::sampling_update: pushes each pixel's output f (float32, the mean of its counts[i] samples) and "

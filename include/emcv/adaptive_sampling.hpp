@@ -8,7 +8,9 @@
 //                           3x3 neighbours of its material in its 8x8 tile (sampling_pool), then the counts:
 //                           quality target N = ceil(sigma^2 / target) clamped to [n_min, n_max], or a mean
 //                           budget B spent as N = clamp(lambda sigma, n_min, n_max) rounded stochastically,
-//                           lambda solved over a histogram of sigma;
+//                           lambda solved over a histogram of sigma, each pooled sigma^2 first shrunk towards
+//                           the previous frame's mean (budget_prior, sampling_shrink: empirical Bayes,
+//                           docs/renderer.md "Shrinkage");
 //              the engine's SSS pass takes N samples per pixel;
 //              sampling_update  pushes the frame's output f (the mean of its N samples) and its control G
 //                           into the history as a batch of N (the comoments grow by N d d^T); cv's push is
@@ -38,6 +40,7 @@
 #include <cstdint>
 #include <optional>
 #include <type_traits>
+#include <vector>
 
 #include "detail/common.hpp"
 #include "port/history.h"
@@ -138,6 +141,10 @@ inline void push(const sampling_params& p, float eta, port::EmcvMovingStats& s, 
 
 inline float sigma2_of(const port::EmcvEmcm2& s, float eta) { return port::emcv_history_sigma2_cv(s, eta); }
 inline float sigma2_of(const port::EmcvMovingStats& s, float eta) { return port::emcv_history_sigma2_moving(s, eta); }
+template <class State>
+float frames_of(const State& s, float eta) {
+    return port::emcv_history_effective_frames(s.count, eta);
+}
 
 }  // namespace detail
 
@@ -190,6 +197,21 @@ void sampling_sigma2(const sampling_params& p, const State* states, std::size_t 
         out[i] = skips && sub_pixel[i] != 0 ? port::emcv_history_no_samples() : detail::sigma2_of(states[i], eta);
 }
 
+/// Each pixel's effective frames, the number of frames its per-sample variance rests on
+/// (port::emcv_history_effective_frames(count, eta): 0 before two frames, 1 at two, (2 - eta) / eta at saturation),
+/// as the renderer's adaptive-samples pass computes it beside sampling_sigma2. Throws std::invalid_argument when
+/// the parameters are invalid, the state type is not the estimator's, or an array is null.
+template <class State>
+void sampling_frames(const sampling_params& p, const State* states, std::size_t pixels, float* out) {
+    constexpr const char* where = "emcv::sampling_frames";
+    check_sampling_params(p);
+    detail::check_state_type<State>(p, where);
+    detail::check_pixels(states, pixels, where, "states must not be null");
+    detail::check_pixels(out, pixels, where, "out must not be null");
+    const float eta = sampling_eta(p);
+    for (std::size_t i = 0; i < pixels; ++i) out[i] = detail::frames_of(states[i], eta);
+}
+
 /// The side of the pooling tiles: the renderer's SSS tiles and workgroups (EMCV_RENDER_TILE_SIZE in
 /// shaders/render/bindings.h), aligned at multiples of it from the image's pixel (0, 0).
 inline constexpr std::size_t sampling_tile_size = 8;
@@ -202,18 +224,26 @@ inline constexpr std::size_t sampling_tile_size = 8;
 /// gets port::emcv_history_no_samples() (0 samples) and never pools with its neighbours; any other value is a
 /// scattering material's id. material may be null: every pixel scatters, all with the same material. own and
 /// out hold `pixels` entries in rows of `width` and may be the same array (pooling in place).
-/// Throws std::invalid_argument when own or out is null, or width is 0 or does not divide pixels.
+/// With own_frames (each pixel's effective frames, sampling_frames) and frames_out, frames_out[i] is the pooled
+/// estimate's effective frames, port::emcv_history_pool_frames(count, sum of 1 / K_j by
+/// port::emcv_history_pool_add_frames over the same neighbours), what the budget's shrinkage weighs it by
+/// (0 for a pixel that does not scatter); own_frames and frames_out may be the same array. Both or neither.
+/// Throws std::invalid_argument when own or out is null, only one of own_frames and frames_out is given, or
+/// width is 0 or does not divide pixels.
 inline void sampling_pool(const float* own, std::size_t pixels, std::size_t width, const std::uint32_t* material,
-                          float* out) {
+                          float* out, const float* own_frames = nullptr, float* frames_out = nullptr) {
     constexpr const char* where = "emcv::sampling_pool";
     detail::check_pixels(own, pixels, where, "own must not be null");
     detail::check_pixels(out, pixels, where, "out must not be null");
+    detail::require((own_frames == nullptr) == (frames_out == nullptr), where,
+                    "own_frames and frames_out must be given together (both or neither)");
     detail::require(width > 0 && pixels % width == 0, where, "width must be > 0 and divide the pixel count");
     constexpr std::size_t tile = sampling_tile_size;
     const std::size_t height = pixels / width;
     // One tile at a time through a copy, as the shader's shared memory: every neighbour pooled lies in the
     // pixel's tile, so writing a tile's results never changes what another tile reads (in place is safe).
     float tile_sigma2[tile * tile];
+    float tile_frames[tile * tile];
     std::uint32_t tile_code[tile * tile];
     for (std::size_t y0 = 0; y0 < height; y0 += tile) {
         for (std::size_t x0 = 0; x0 < width; x0 += tile) {
@@ -223,6 +253,7 @@ inline void sampling_pool(const float* own, std::size_t pixels, std::size_t widt
                     const std::size_t i = (y0 + ly) * width + x0 + lx;
                     tile_code[ly * tile + lx] = material != nullptr ? material[i] : 1u;
                     tile_sigma2[ly * tile + lx] = own[i];
+                    tile_frames[ly * tile + lx] = own_frames != nullptr ? own_frames[i] : 0.0f;
                 }
             for (std::size_t ly = 0; ly < h; ++ly)
                 for (std::size_t lx = 0; lx < w; ++lx) {
@@ -230,18 +261,22 @@ inline void sampling_pool(const float* own, std::size_t pixels, std::size_t widt
                     const std::uint32_t code = tile_code[here];
                     if (code == 0u) {
                         out[i] = port::emcv_history_no_samples();
+                        if (frames_out != nullptr) frames_out[i] = 0.0f;
                         continue;
                     }
-                    float sum = 0.0f;
+                    float sum = 0.0f, inverse_frames = 0.0f;
                     std::uint32_t count = 0u;
                     // lx - 1 and ly - 1 wrap below 0 to a huge value: the `< w`, `< h` tests skip them as the
                     // shader skips q < 0.
                     for (std::size_t qy = ly - 1; qy != ly + 2; ++qy)
                         for (std::size_t qx = lx - 1; qx != lx + 2; ++qx) {
                             if (qx >= w || qy >= h || tile_code[qy * tile + qx] != code) continue;
+                            port::emcv_history_pool_add_frames(inverse_frames, tile_sigma2[qy * tile + qx],
+                                                               tile_frames[qy * tile + qx]);
                             port::emcv_history_pool_add(sum, count, tile_sigma2[qy * tile + qx]);
                         }
                     out[i] = port::emcv_history_pool_sigma2(tile_sigma2[here], sum, count);
+                    if (frames_out != nullptr) frames_out[i] = port::emcv_history_pool_frames(count, inverse_frames);
                 }
         }
     }
@@ -282,6 +317,71 @@ inline void budget_add(budget_histogram& h, const float* sigma2, std::size_t pix
     detail::check_pixels(sigma2, pixels, "emcv::budget_add", "sigma2 must not be null");
     for (std::size_t i = 0; i < pixels; ++i)
         if (material == nullptr || material[i] != 0u) budget_add(h, sigma2[i]);
+}
+
+/// Adds one pixel's pooled variance before shrinkage and its pooled effective frames to the statistics the next
+/// frame's shrinkage reads, as the GPU's emcv_budget_add_raw: the bin of its sigma in raw_count and
+/// port::emcv_history_inverse_frames_units(frames) in raw_inverse_frames. A code (negative or NaN sigma2) or a
+/// pixel without frames adds nothing.
+inline void budget_add_raw(budget_histogram& h, float sigma2, float frames) noexcept {
+    if (!(sigma2 >= 0.0f) || !(frames > 0.0f)) return;
+    ++h.raw_count[port::emcv_budget_bin(std::sqrt(sigma2))];
+    h.raw_inverse_frames += port::emcv_history_inverse_frames_units(frames);
+}
+
+/// The statistics a frame's budget shrinks each pixel's pooled variance towards (port::emcv_history_shrink_sigma2):
+/// the previous frame's mean m of the pooled variances and the spread tau^2 of the true ones across pixels.
+/// Zero (the default) means none yet: the variances are spent as they are, as on the renderer's first frames.
+struct budget_prior {
+    float mean_sigma2 = 0.0f;       ///< m, > 0 once a frame had pixels with a variance
+    float between_variance = 0.0f;  ///< tau^2 >= 0 (0: the spread was all sampling noise: spend evenly)
+};
+
+/// r, the relative variance of one frame's term of a history's variance under p's budget
+/// (port::emcv_history_frame_relative_variance at the residual's kurtosis and a batch of max(budget, 1)): the
+/// renderer's port::emcv_history_spend_relative_variance() when p.budget is its EMCV_HISTORY_SPP_BUDGET.
+inline float budget_relative_variance(const sampling_params& p) noexcept {
+    return port::emcv_history_frame_relative_variance(port::emcv_history_residual_kurtosis(),
+                                                      p.budget > 1.0f ? p.budget : 1.0f);
+}
+
+/// The prior the next frame shrinks towards, from the histogram's raw_count and raw_inverse_frames
+/// (budget_add_raw): port::emcv_history_frame_prior of the bins' moments, added as the GPU's solve adds them
+/// (each of the 64 threads its bins t, t + 64, ..., then the threads in order), bit for bit. Leaves the histogram
+/// as it is. Throws std::invalid_argument when the parameters are invalid (p.budget is checked as under a budget).
+inline budget_prior budget_frame_prior(const sampling_params& p, const budget_histogram& h) {
+    sampling_params as_budget = p;
+    as_budget.mode = sampling_mode::budget;
+    check_sampling_params(as_budget);
+    constexpr std::uint32_t threads = static_cast<std::uint32_t>(sampling_tile_size * sampling_tile_size);
+    glm::vec3 moments(0.0f);
+    for (std::uint32_t t = 0; t < threads; ++t) {
+        glm::vec3 partial(0.0f);
+        for (std::uint32_t bin = t; bin < EMCV_BUDGET_BINS; bin += threads)
+            partial = port::emcv_history_moments_add(partial, bin, h.raw_count[bin]);
+        moments += partial;
+    }
+    const glm::vec2 prior = port::emcv_history_frame_prior(moments, h.raw_inverse_frames, budget_relative_variance(p));
+    return budget_prior{prior.x, prior.y};
+}
+
+/// Shrinks each pooled variance code in place towards the prior, as the renderer's samples pass does before the
+/// budget's histogram: sigma2[i] = port::emcv_history_shrink_sigma2(sigma2[i], frames[i], prior.mean_sigma2,
+/// prior.between_variance, budget_relative_variance(p)): a pixel without a variance yet gets the mean, one
+/// resting on many frames keeps nearly its own; emcv_history_no_samples() stays. Throws std::invalid_argument
+/// when the parameters are invalid or an array is null.
+inline void sampling_shrink(const sampling_params& p, const budget_prior& prior, float* sigma2, const float* frames,
+                            std::size_t pixels) {
+    constexpr const char* where = "emcv::sampling_shrink";
+    sampling_params as_budget = p;
+    as_budget.mode = sampling_mode::budget;
+    check_sampling_params(as_budget);
+    detail::check_pixels(sigma2, pixels, where, "sigma2 must not be null");
+    detail::check_pixels(frames, pixels, where, "frames must not be null");
+    const float relative = budget_relative_variance(p);
+    for (std::size_t i = 0; i < pixels; ++i)
+        sigma2[i] = port::emcv_history_shrink_sigma2(sigma2[i], frames[i], prior.mean_sigma2, prior.between_variance,
+                                                     relative);
 }
 
 /// The scale lambda with sum_i clamp(lambda sigma_i, n_min, n_max) = budget (histogram pixels + zero pixels)
@@ -360,27 +460,52 @@ struct frame_plan {
 };
 
 /// One frame's plan, as the renderer's adaptive-samples, budget and burley passes: sampling_sigma2 into
-/// sigma2_out, pooled there by sampling_pool (the codes the counts are computed from), then under a budget the
-/// histogram of the scattering pixels (budget_add) and budget_solve, then sampling_counts into counts_out.
+/// sigma2_out, pooled there by sampling_pool (the codes the counts are computed from), then under a budget
+/// each pooled variance shrunk towards `prior` by its pooled effective frames (sampling_frames, sampling_shrink),
+/// the histogram of the scattering pixels (budget_add) and budget_solve, then sampling_counts into counts_out.
+/// Under a budget `prior` is read (last frame's statistics; budget_prior{} before the first frame) and replaced
+/// by this frame's (budget_add_raw, budget_frame_prior), as the renderer's budget block carries them from one
+/// frame to the next; under a quality target it is left as it is. sigma2_out holds the codes the counts were
+/// computed from (under a budget: shrunk).
 /// states, material, sub_pixel, sigma2_out and counts_out hold `pixels` entries in rows of `width` (the image,
 /// pixels / width rows); material[i] is the pixel's material id, 0 where it does not scatter (0 samples, out of
 /// the pooling and the budget), and may be null (every pixel scatters, one material); sub_pixel may be null (no
 /// sub-pixel kernels). frame and seed salt the budget's stochastic rounding (the renderer passes its frame index
-/// and seed). Throws std::invalid_argument as the functions it calls.
+/// and seed). Under a budget it allocates `pixels` floats (the effective frames). Throws std::invalid_argument as
+/// the functions it calls.
+template <class State>
+frame_plan plan_frame(const sampling_params& p, const State* states, std::size_t pixels, std::size_t width,
+                      const std::uint32_t* material, const std::uint8_t* sub_pixel, std::uint32_t frame,
+                      std::uint32_t seed, float* sigma2_out, int* counts_out, budget_prior& prior) {
+    sampling_sigma2(p, states, pixels, sub_pixel, sigma2_out);
+    frame_plan plan;
+    if (p.mode == sampling_mode::budget) {
+        std::vector<float> frames(pixels);
+        sampling_frames(p, states, pixels, frames.data());
+        sampling_pool(sigma2_out, pixels, width, material, sigma2_out, frames.data(), frames.data());
+        budget_histogram h = make_budget_histogram();
+        for (std::size_t i = 0; i < pixels; ++i) budget_add_raw(h, sigma2_out[i], frames[i]);
+        const budget_prior next = budget_frame_prior(p, h);
+        sampling_shrink(p, prior, sigma2_out, frames.data(), pixels);
+        budget_add(h, sigma2_out, pixels, material);
+        plan.lambda = budget_solve(p, h);
+        prior = next;
+    } else {
+        sampling_pool(sigma2_out, pixels, width, material, sigma2_out);
+    }
+    plan.samples = sampling_counts(p, sigma2_out, pixels, width, plan.lambda, frame, seed, counts_out);
+    return plan;
+}
+
+/// plan_frame without a prior carried between frames: every frame planned as the renderer plans its first
+/// (under a budget the pooled variances are spent as they are, none shrunk). An engine that plans frame after
+/// frame under a budget passes a budget_prior it keeps (the overload above).
 template <class State>
 frame_plan plan_frame(const sampling_params& p, const State* states, std::size_t pixels, std::size_t width,
                       const std::uint32_t* material, const std::uint8_t* sub_pixel, std::uint32_t frame,
                       std::uint32_t seed, float* sigma2_out, int* counts_out) {
-    sampling_sigma2(p, states, pixels, sub_pixel, sigma2_out);
-    sampling_pool(sigma2_out, pixels, width, material, sigma2_out);
-    frame_plan plan;
-    if (p.mode == sampling_mode::budget) {
-        budget_histogram h = make_budget_histogram();
-        budget_add(h, sigma2_out, pixels, material);
-        plan.lambda = budget_solve(p, h);
-    }
-    plan.samples = sampling_counts(p, sigma2_out, pixels, width, plan.lambda, frame, seed, counts_out);
-    return plan;
+    budget_prior none;
+    return plan_frame(p, states, pixels, width, material, sub_pixel, frame, seed, sigma2_out, counts_out, none);
 }
 
 }  // namespace emcv

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // shaders/adaptive/budget_block.h — the budget's storage block (emcv/port/budget.h's EmcvBudgetBlock) as the
 // adaptive passes see it; for the samples pass (EMCV_BUDGET_GROUP_THREADS defined), the per-workgroup histogram
-// its pixels are added to and the solve that its last workgroup runs on the frame's histogram.
+// its pixels are added to and the solve that its last workgroup runs on the frame's histogram, which also stores
+// the next frame's shrinkage prior from the histogram of the unshrunk variances (emcv_history_frame_prior).
 #ifndef EMCV_ADAPTIVE_BUDGET_BLOCK_H
 #define EMCV_ADAPTIVE_BUDGET_BLOCK_H
 
@@ -29,6 +30,10 @@ shared bool emcv_budget_last_group;
 shared uint emcv_budget_group_count[EMCV_BUDGET_BINS];
 shared uint emcv_budget_group_fraction[EMCV_BUDGET_BINS];
 shared uint emcv_budget_group_zero;
+shared uint emcv_budget_group_raw[EMCV_BUDGET_BINS];  // the pooled sigma^2 before shrinkage (frame statistics)
+shared uint emcv_budget_group_inverse_frames;
+shared vec3 emcv_budget_moments[EMCV_BUDGET_GROUP_THREADS];  // per thread, for the next frame's prior
+shared vec2 emcv_budget_prior;                                   // (mean, tau^2), stored with lambda
 shared uint emcv_budget_group_default;
 shared uint emcv_budget_below;  // candidates of the round whose total falls short of the plan
 shared uint emcv_budget_nonempty;  // the frame's non-empty bins, packed in bin order at the front of the arrays
@@ -38,8 +43,10 @@ void emcv_budget_group_clear(uint thread) {
     for (uint k = 0u; k < uint(EMCV_BUDGET_BINS_PER_THREAD); ++k) {
         emcv_budget_group_count[thread + k * uint(EMCV_BUDGET_GROUP_THREADS)] = 0u;
         emcv_budget_group_fraction[thread + k * uint(EMCV_BUDGET_GROUP_THREADS)] = 0u;
+        emcv_budget_group_raw[thread + k * uint(EMCV_BUDGET_GROUP_THREADS)] = 0u;
     }
     if (thread == 0u) {
+        emcv_budget_group_inverse_frames = 0u;
         emcv_budget_group_zero = 0u;
         emcv_budget_group_default = 0u;
     }
@@ -58,6 +65,14 @@ void emcv_budget_add(float sigma2) {
         atomicAdd(emcv_budget_group_count[bin], 1u);
         atomicAdd(emcv_budget_group_fraction[bin], emcv_budget_fraction(sigma));
     }
+}
+
+/// Adds a pixel's pooled variance before shrinkage and its pooled effective frames to the statistics the
+/// next frame shrinks towards (a code, or no frames, adds nothing; emcv::budget_add_raw in C++).
+void emcv_budget_add_raw(float sigma2, float frames) {
+    if (!(sigma2 >= 0.0f) || !(frames > 0.0f)) return;
+    atomicAdd(emcv_budget_group_raw[emcv_budget_bin(sqrt(sigma2))], 1u);
+    atomicAdd(emcv_budget_group_inverse_frames, emcv_history_inverse_frames_units(frames));
 }
 
 /// The frame's planned samples at scale lambda: the non-empty bins added in bin order (the empty ones would add
@@ -82,8 +97,10 @@ void emcv_budget_finish_group(uint thread, uint groups) {
             atomicAdd(budget.bin_count[bin], emcv_budget_group_count[bin]);
             atomicAdd(budget.bin_fraction[bin], emcv_budget_group_fraction[bin]);
         }
+        if (emcv_budget_group_raw[bin] > 0u) atomicAdd(budget.raw_count[bin], emcv_budget_group_raw[bin]);
     }
     if (thread == 0u) {
+        if (emcv_budget_group_inverse_frames > 0u) atomicAdd(budget.raw_inverse_frames, emcv_budget_group_inverse_frames);
         if (emcv_budget_group_zero > 0u) atomicAdd(budget.zero_pixels, emcv_budget_group_zero);
         if (emcv_budget_group_default > 0u) atomicAdd(budget.default_pixels, emcv_budget_group_default);
     }
@@ -103,6 +120,21 @@ void emcv_budget_finish_group(uint thread, uint groups) {
         emcv_budget_group_fraction[bin] = floatBitsToUint(emcv_budget_bin_sum(bin, count, fraction));
     }
     if (thread == 0u) emcv_budget_group_zero = atomicExchange(budget.zero_pixels, 0u);
+    {  // the next frame's prior (emcv_history_frame_prior): each thread's bins, then thread 0 adds the threads
+        vec3 moments = vec3(0.0f);
+        for (uint k = 0u; k < uint(EMCV_BUDGET_BINS_PER_THREAD); ++k) {
+            uint bin = thread + k * uint(EMCV_BUDGET_GROUP_THREADS);
+            moments = emcv_history_moments_add(moments, bin, atomicExchange(budget.raw_count[bin], 0u));
+        }
+        emcv_budget_moments[thread] = moments;
+    }
+    barrier();
+    if (thread == 0u) {
+        vec3 moments = vec3(0.0f);
+        for (uint t = 0u; t < uint(EMCV_BUDGET_GROUP_THREADS); ++t) moments += emcv_budget_moments[t];
+        emcv_budget_prior = emcv_history_frame_prior(moments, atomicExchange(budget.raw_inverse_frames, 0u),
+                                                     emcv_history_spend_relative_variance());
+    }
     barrier();
     uint histogram_pixels = 0u;
     if (thread == 0u) {
@@ -140,6 +172,8 @@ void emcv_budget_finish_group(uint thread, uint groups) {
     if (thread == 0u) {
         budget.lambda = emcv_bits_float(high);
         budget.planned = planned;
+        budget.mean_sigma2 = emcv_budget_prior.x;
+        budget.between_variance = emcv_budget_prior.y;
         atomicExchange(budget.default_pixels, 0u);
         atomicExchange(budget.finished_groups, 0u);
     }

@@ -69,6 +69,15 @@ float emcv_adaptive_sigma2(EmcvAdaptiveState s) {
 #endif
 }
 
+/// The effective frames the method's per-sample variance rests on (emcv_history_effective_frames at its eta).
+float emcv_adaptive_effective_frames(EmcvAdaptiveState s) {
+#if defined(EMCV_ADAPTIVE_CV)
+    return emcv_history_effective_frames(s.count, EMCV_HISTORY_ETA_EMCM);
+#else
+    return emcv_history_effective_frames(s.count, EMCV_HISTORY_ETA_MOVING);
+#endif
+}
+
 /// Whether the pixel's kernel is under a pixel, where the control-variate methods take no samples (spvg never
 /// skips: it has no control to stand in for the scattered value).
 bool emcv_adaptive_sub_pixel(ivec2 p, uint code) {

@@ -5,7 +5,8 @@
 // sampling), keeps it only when the position is on screen and the surface is the same (material, depth,
 // normal: emcv_history_reusable) and the texel is not poisoned, writes that state (or a fresh one) into this
 // frame's history, and writes what the burley pass takes (EMCV_ADAPTIVE_IMG_SAMPLES) from the history's per-sample
-// variance: N under a quality target; under a budget the variance itself (its bits), added to the histogram
+// variance: N under a quality target; under a budget the variance shrunk towards the previous frame's mean
+// (emcv_history_shrink_sigma2), as its bits, added to the histogram
 // from which the pass's last workgroup solves lambda before the burley pass computes N (emcv/port/budget.h,
 // adaptive/budget_block.h): one pass, no solve dispatch of its own.
 #version 450 core
@@ -45,11 +46,14 @@ bool emcv_adaptive_reproject(ivec2 p, uint material, out vec4 a, out vec4 b) {
 // The pixels of this 8x8 tile: their per-sample variance (or code) and material, for the 3x3 pooling below.
 shared float tile_sigma2[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];
 shared uint tile_code[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];
+shared float tile_frames[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];  // effective frames of each variance
 
-/// This pixel's own per-sample variance (or its code) from its kept or fresh history; 0 material for pixels
-/// that do not scatter (and their history reset: nothing stale is ever reprojected from there).
-float own_sigma2(ivec2 p, out uint code) {
+/// This pixel's own per-sample variance (or its code) from its kept or fresh history, and the effective frames
+/// it rests on; 0 material for pixels that do not scatter (and their history reset: nothing stale is ever
+/// reprojected from there).
+float own_sigma2(ivec2 p, out uint code, out float frames) {
     code = 0u;
+    frames = 0.0f;
     if (!emcv_render_on_screen(p)) return emcv_history_no_samples();
     code = emcv_render_material_code(p);
     if (!emcv_render_scatters(code)) {
@@ -66,6 +70,7 @@ float own_sigma2(ivec2 p, out uint code) {
     } else {
         emcv_adaptive_store(p, s);
     }
+    frames = emcv_adaptive_effective_frames(s);
     return emcv_adaptive_sub_pixel(p, code) ? emcv_history_no_samples() : emcv_adaptive_sigma2(s);
 }
 
@@ -76,6 +81,7 @@ void allocate(ivec2 p, float own, uint code) {
     // about 1 / eta frames of a heavy-tailed residual, and its neighbours see nearly the same noise.
     float sum = 0.0f;
     uint count = 0u;
+    float inverse_frames = 0.0f;
     ivec2 l = ivec2(gl_LocalInvocationID.xy);
     for (int dy = -1; dy <= 1; ++dy) {
         for (int dx = -1; dx <= 1; ++dx) {
@@ -83,6 +89,7 @@ void allocate(ivec2 p, float own, uint code) {
             if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(EMCV_RENDER_TILE_SIZE)))) continue;
             uint i = uint(q.x + q.y * EMCV_RENDER_TILE_SIZE);
             if (tile_code[i] != code) continue;
+            emcv_history_pool_add_frames(inverse_frames, tile_sigma2[i], tile_frames[i]);
             emcv_history_pool_add(sum, count, tile_sigma2[i]);
         }
     }
@@ -90,6 +97,12 @@ void allocate(ivec2 p, float own, uint code) {
     if (emcv_history_budget_mode()) {
         // The burley pass turns sigma into N once lambda is solved from this frame's histogram: the image
         // carries the variance (or its code) until then.
+        // Shrunk towards the previous frame's mean by how much the pooled estimate knows (emcv/port/history.h,
+        // emcv_history_shrink_sigma2); the estimate before shrinkage feeds the next frame's prior.
+        float frames = emcv_history_pool_frames(count, inverse_frames);
+        emcv_budget_add_raw(sigma2, frames);
+        sigma2 = emcv_history_shrink_sigma2(sigma2, frames, budget.mean_sigma2, budget.between_variance,
+                                            emcv_history_spend_relative_variance());
         emcv_budget_add(sigma2);
         imageStore(samples_image, p, uvec4(floatBitsToUint(sigma2)));
     } else {
@@ -102,8 +115,10 @@ void main() {
     if (emcv_history_budget_mode()) emcv_budget_group_clear(here);  // ordered before any add by the barrier below
     ivec2 p = emcv_render_tile_pixel();
     uint code;
-    float own = own_sigma2(p, code);
+    float frames;
+    float own = own_sigma2(p, code, frames);
     tile_sigma2[here] = own;
+    tile_frames[here] = frames;
     tile_code[here] = code;
     barrier();
     if (code != 0u) allocate(p, own, code);

@@ -54,6 +54,25 @@ void main() {
     emcv_history_pool_add(pooled, pooled_count, sigma2);
     emcv_history_pool_add(pooled, pooled_count, emcv_history_sigma2_moving(stats, EMCV_HISTORY_ETA_MOVING));
     sigma2 = emcv_history_pool_sigma2(sigma2, pooled, pooled_count);
+    // The budget's shrinkage towards last frame's prior (history.h): the pool's effective frames, the frame
+    // statistics this pixel adds (raw histogram, moments, 1 / K), and the shrunk variance.
+    float inverse_frames = 0.0f;
+    const float own_frames = emcv_history_effective_frames(cov.count, EMCV_HISTORY_ETA_EMCM);
+    emcv_history_pool_add_frames(inverse_frames, sigma2, own_frames);
+    const float frames = emcv_history_pool_frames(pooled_count, inverse_frames);
+    if (sigma2 >= 0.0f && frames > 0.0f) {
+        atomicAdd(budget.block.raw_count[emcv_budget_bin(sqrt(sigma2))], 1u);
+        atomicAdd(budget.block.raw_inverse_frames, emcv_history_inverse_frames_units(frames));
+    }
+    const vec3 moments = emcv_history_moments_add(vec3(0.0f), emcv_budget_bin(sqrt(max(sigma2, 0.0f))), 1u);
+    const vec2 prior = emcv_history_frame_prior(moments, emcv_history_inverse_frames_units(max(frames, 1.0f)),
+                                                emcv_history_spend_relative_variance());
+    if (index == 0u) {  // what a solve stores for the next frame
+        budget.block.mean_sigma2 = prior.x;
+        budget.block.between_variance = prior.y;
+    }
+    sigma2 = emcv_history_shrink_sigma2(sigma2, frames, budget.block.mean_sigma2, budget.block.between_variance,
+                                        emcv_history_spend_relative_variance());
     const float u_round = emcv_budget_u(pixel.x, pixel.y, frame_index, seed);
     int n = emcv_history_budget_mode() ? emcv_history_count_spend(sigma2, budget.block.lambda, u_round)
                                        : emcv_history_count_target(sigma2);

@@ -479,7 +479,7 @@ TEST_CASE("a poisoned history texel (NaN, Inf, negative variance) is reset and n
     CHECK(messenger.error_count() == 0);
 }
 
-TEST_CASE("budget mode: the samples pass's last workgroup solves the library's lambda from the same variances, bit for bit") {
+TEST_CASE("budget mode: the samples pass shrinks as the library does and its last workgroup solves the library's lambda, bit for bit") {
     emcv::gl::context ctx = emcv::test::context_or_skip();
     emcv::gl::debug_messenger messenger;
     harness hx;
@@ -488,14 +488,42 @@ TEST_CASE("budget mode: the samples pass's last workgroup solves the library's l
     history h(emcv::demo::method{kind::spvg, 0}, width, height, options, emcv_test::shader_dir());
     REQUIRE(h.budget_mode());
     std::vector<float> g, f;
+    emcv::sampling_params p;
+    p.mode = emcv::sampling_mode::budget;
+    p.budget = 6.0f;
+    emcv::budget_prior prior;  // the library's plan, fed the states the GPU's samples pass reads each frame
+    int shrunk_frames = 0;
     for (int frame = 0; frame < 6; ++frame) {
         light_at(frame, g, f);
         hx.set_light(g, f);
         std::vector<std::uint32_t> taken(pixels);
         for (std::size_t i = 0; i < pixels; ++i) taken[i] = 1u + taken_at(i, frame);
         hx.set_taken(taken);
+        const std::vector<texel> before = h.read();
+        std::vector<emcv::port::EmcvMovingStats> states(pixels);
+        for (std::size_t i = 0; i < pixels; ++i) REQUIRE(emcv::port::emcv_history_decode_stats(before[i].a, states[i]));
+        const bool shrinks = prior.mean_sigma2 > 0.0f;
+        std::vector<float> cpp_sigma2_codes(pixels);
+        std::vector<int> cpp_n(pixels);
+        emcv::plan_frame(p, states.data(), pixels, std::size_t(width), nullptr, nullptr, std::uint32_t(frame), 0u,
+                         cpp_sigma2_codes.data(), cpp_n.data(), prior);
         hx.frame(h, kind::spvg);
+        // The GPU's shrunk codes (the samples image) and the prior its solve stored for the next frame: the
+        // library's, bit for bit (the same port functions, the moments added in the same order).
+        const std::vector<std::uint32_t> stored = hx.counts(h);
+        for (std::size_t i = 0; i < pixels; ++i) {
+            INFO("frame " << frame << " pixel " << i);
+            CHECK(stored[i] == bits(cpp_sigma2_codes[i]));
+        }
+        const emcv::port::EmcvBudgetBlock block = h.read_budget();
+        INFO("frame " << frame << ": prior GPU (" << block.mean_sigma2 << ", " << block.between_variance << "), C++ ("
+                      << prior.mean_sigma2 << ", " << prior.between_variance << ")");
+        CHECK(bits(block.mean_sigma2) == bits(prior.mean_sigma2));
+        CHECK(bits(block.between_variance) == bits(prior.between_variance));
+        if (shrinks) ++shrunk_frames;
     }
+    CHECK(shrunk_frames >= 2);  // frames 3 on read a prior (variances from frame 2): the shrinkage was exercised
+    CHECK(prior.mean_sigma2 > 0.0f);
     // The variances the last frame's samples pass stored in the samples image, added to a histogram by the
     // library, solved by the library: the same lambda, bit for bit, as the pass's last workgroup solved from the
     // histogram the GPU's atomics built (a different pairing of the tree's sums, a lost or doubled pixel, or
@@ -511,9 +539,6 @@ TEST_CASE("budget mode: the samples pass's last workgroup solves the library's l
     std::uint32_t histogram_pixels = 0;
     for (int b = 0; b < EMCV_BUDGET_BINS; ++b) histogram_pixels += cpp.bin_count[b];
     CHECK(histogram_pixels == pixels);  // five frames of history: every pixel has a variance
-    emcv::sampling_params p;
-    p.mode = emcv::sampling_mode::budget;
-    p.budget = 6.0f;
     const float lambda = emcv::budget_solve(p, cpp);
     INFO("lambda: GPU " << solved.lambda << ", C++ " << lambda);
     CHECK(bits(solved.lambda) == bits(lambda));
@@ -522,7 +547,9 @@ TEST_CASE("budget mode: the samples pass's last workgroup solves the library's l
     for (int b = 0; b < EMCV_BUDGET_BINS; ++b) {
         CHECK(solved.bin_count[b] == 0u);
         CHECK(solved.bin_fraction[b] == 0u);
+        CHECK(solved.raw_count[b] == 0u);
     }
+    CHECK(solved.raw_inverse_frames == 0u);
     CHECK(solved.finished_groups == 0u);
     CHECK(solved.default_pixels == 0u);
     CHECK(solved.zero_pixels == 0u);

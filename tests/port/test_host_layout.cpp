@@ -122,7 +122,11 @@ void check_all(const nlohmann::json& r) {
                    EMCV_HOST_MEMBER(host::EmcvBudgetBlock, zero_pixels),
                    EMCV_HOST_MEMBER(host::EmcvBudgetBlock, finished_groups),
                    EMCV_HOST_MEMBER(host::EmcvBudgetBlock, bin_count),
-                   EMCV_HOST_MEMBER(host::EmcvBudgetBlock, bin_fraction)});
+                   EMCV_HOST_MEMBER(host::EmcvBudgetBlock, bin_fraction),
+                   EMCV_HOST_MEMBER(host::EmcvBudgetBlock, raw_count),
+                   EMCV_HOST_MEMBER(host::EmcvBudgetBlock, raw_inverse_frames),
+                   EMCV_HOST_MEMBER(host::EmcvBudgetBlock, mean_sigma2),
+                   EMCV_HOST_MEMBER(host::EmcvBudgetBlock, between_variance)});
     CHECK(block_size(r, "BudgetBuffer") == sizeof(host::EmcvBudgetBlock));
 }
 

@@ -38,6 +38,7 @@ int run(const emcv::sampling_params& p, std::size_t width, std::size_t height, i
     std::vector<float> f(pixels), g(pixels), sigma2(pixels);
     std::vector<std::uint32_t> material(pixels);
     std::vector<int> counts(pixels);
+    emcv::budget_prior prior;  // carried between frames, as emcv.History carries it
     for (int t = 0; t < frames; ++t) {
         if (!read(in, f) || !read(in, g) || !read(in, material)) {
             std::fprintf(stderr, "emcv-python-reference: the input ends before frame %d\n", t);
@@ -45,7 +46,7 @@ int run(const emcv::sampling_params& p, std::size_t width, std::size_t height, i
         }
         const emcv::frame_plan plan = emcv::plan_frame(p, history.data(), pixels, width, material.data(), nullptr,
                                                        static_cast<std::uint32_t>(t), seed, sigma2.data(),
-                                                       counts.data());
+                                                       counts.data(), prior);
         emcv::sampling_update(p, history.data(), pixels, f.data(), g.data(), counts.data());
         write(out, counts.data(), pixels);
         write(out, sigma2.data(), pixels);

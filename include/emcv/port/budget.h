@@ -16,6 +16,9 @@
 //            float's bits (no transcendental: the CPU and the GPU bin alike, bit for bit). Each bin keeps the
 //            count and the sum of the next 10 mantissa bits, so that its sum of sigma is known to 2^-13 of
 //            sigma (32-bit sums up to 4M pixels per bin).
+//            Beside it the block keeps a histogram of the pooled variances before the shrinkage (raw_count) and
+//            their sum of 1 / frames, from which the solve stores the next frame's prior (mean_sigma2,
+//            between_variance; port/history.h, emcv_history_frame_prior).
 //            The solve (emcv::budget_solve in C++, the samples pass's last workgroup on the GPU,
 //            shaders/adaptive/budget_block.h) searches the bit pattern of lambda (positive floats order as
 //            their bits) for the smallest whose total, the bins added in bin order, reaches the plan: C++ by
@@ -51,6 +54,12 @@ struct EmcvBudgetBlock {
     uint finished_groups;
     uint bin_count[EMCV_BUDGET_BINS];     ///< pixels per bin
     uint bin_fraction[EMCV_BUDGET_BINS];  ///< sum of the 10 mantissa bits under the bin's 3
+    /// Histogram of the pooled per-sample variance before shrinkage (its sqrt binned as sigma), pixels with a
+    /// variance only: the frame statistics the next frame shrinks towards (emcv_history_shrink_sigma2).
+    uint raw_count[EMCV_BUDGET_BINS];
+    uint raw_inverse_frames;  ///< sum over those pixels of 1 / (pooled effective frames), in units of 2^-10
+    float mean_sigma2;        ///< last frame's mean pooled sigma^2 over pixels with a variance (0: none yet)
+    float between_variance;   ///< last frame's spread of the true sigma^2 across pixels (tau^2), >= 0
 };
 
 #ifdef __cplusplus

@@ -22,11 +22,14 @@
 //              quality target  N = ceil(sigma^2 / EMCV_HISTORY_TARGET), clamped to [N_MIN, N_MAX]: the output's
 //                              variance lands on the target (SPVG's intent, calibrated);
 //              budget          a mean of EMCV_HISTORY_SPP_BUDGET samples per SSS pixel, N proportional to sigma
-//                              (port/budget.h), the allocation of least mean squared error.
+//                              (port/budget.h), the allocation of least mean squared error, with each pooled
+//                              sigma^2 first shrunk towards the previous frame's mean by the empirical-Bayes
+//                              weight of its effective frames (emcv_history_shrink_sigma2).
 //            The count saturates at EMCV_HISTORY_MAX_COUNT (exact in binary16). A texel that is not finite, has
 //            a negative variance or count, is refused: the pixel restarts (never spreads NaN/Inf).
 //            A history younger than two frames has no variance yet: it asks for N_MAX under a quality target
-//            (as on a reset) and for the budget B itself under a budget (the uniform share: no information).
+//            (as on a reset) and under a budget for the frame's mean variance (the uniform share: no
+//            information), or B itself before any frame had a variance.
 // USAGE      EmcvMovingStats s; bool ok = emcv_history_decode_stats(texel, s);
 //            int n = emcv_history_count_quality(emcv_history_sigma2_moving(s, EMCV_HISTORY_ETA_MOVING), ...);
 // REFERENCES Xie & Olano 2021 (section 4-5, supp. Eq. 21, 25-27); SPVG 2020 (eta 0.2, target 1e-4, N <= 64).
@@ -246,6 +249,118 @@ EMCV_FN void emcv_history_pool_add(EMCV_INOUT(float) sum, EMCV_INOUT(uint) count
 EMCV_FN float emcv_history_pool_sigma2(float own, float sum, uint count) {
     if (!(own >= 0.0f) || count == 0u) return own;
     return sum / float(count);
+}
+
+// Shrinkage of the pooled variance towards the frame's mean (budget mode; docs/renderer.md, "Shrinkage").
+// An allocation proportional to a noisy sigma loses to the even split, and a history just restarted has a noisy
+// sigma. Empirical Bayes: with the true sigma_i^2 spread across pixels with mean m and variance tau^2, and an
+// estimate s2_i of sampling variance v_i, the posterior mean is w s2_i + (1 - w) m with w = tau^2 / (tau^2 + v_i).
+// v_i = r E[sigma^4] / K_i: K_i effective frames of the pool (emcv_history_pool_frames), r the relative variance of
+// one frame's term n d^2 (emcv_history_frame_relative_variance), E[sigma^4] = m^2 + tau^2 (the prior's, so that
+// w does not depend on the noisy s2_i itself). m and tau^2 are the previous frame's, from the histogram of the
+// pooled variances before shrinkage (emcv_history_frame_prior).
+
+/// The residual's per-sample kurtosis the shrinkage assumes: 9.36, the median per pixel on `static` at 128x128
+/// over 190 one-sample frames (docs/renderer.md, "Pooling"; a measurement, not a tunable).
+EMCV_FN float emcv_history_residual_kurtosis() { return 9.36f; }
+
+/// a^n for n < 2^11 by squaring (no pow(): the same bits in C++ and on every GPU).
+EMCV_FN float emcv_history_power(float a, uint n) {
+    EMCV_PRECISE float result = 1.0f;
+    EMCV_PRECISE float base = a;
+    for (uint k = 0u; k < 11u; ++k) {
+        if ((n & (1u << k)) != 0u) result = result * base;
+        base = base * base;
+    }
+    return result;
+}
+
+/// Effective frames of a history's per-sample variance: its count - 1 frame terms n d^2 (the first frame
+/// only seeds the mean) carry the weights a^j, a = 1 - eta, and (sum w)^2 / sum w^2 =
+/// (1 - a^n)(1 + a) / ((1 - a)(1 + a^n)) with n = count - 1 (capped at EMCV_HISTORY_MAX_COUNT): 1 at count 2,
+/// (2 - eta) / eta at saturation (9 at eta 0.2). 0 before two frames (no variance yet).
+EMCV_FN float emcv_history_effective_frames(uint count, float eta) {
+    if (count < 2u) return 0.0f;
+    float a = 1.0f - eta;
+    float an = emcv_history_power(a, min(count, EMCV_HISTORY_MAX_COUNT) - 1u);
+    EMCV_PRECISE float frames = (1.0f - an) * (1.0f + a) / (eta * (1.0f + an));
+    return frames;
+}
+
+/// Relative variance Var(n d^2) / sigma^4 of one frame's term for a batch mean of n samples whose per-sample
+/// kurtosis is `kurtosis`: the batch mean's kurtosis is 3 + (kurtosis - 3) / n, minus 1.
+EMCV_FN float emcv_history_frame_relative_variance(float kurtosis, float n) {
+    EMCV_PRECISE float r = 2.0f + (kurtosis - 3.0f) / n;
+    return r;
+}
+
+/// Pooling, one neighbour's effective frames: adds 1 / frames to the running sum when the neighbour has a
+/// variance (the same neighbours as emcv_history_pool_add).
+EMCV_FN void emcv_history_pool_add_frames(EMCV_INOUT(float) inverse_sum, float sigma2, float frames) {
+    if (!(sigma2 >= 0.0f) || !(frames > 0.0f)) return;
+    inverse_sum = inverse_sum + 1.0f / frames;
+}
+
+/// The effective frames of a pooled variance, the mean of `count` neighbours' estimates of K_j frames each:
+/// its sampling variance is r sigma^4 sum_j (1 / K_j) / count^2, that of count^2 / sum (1 / K_j) frames.
+/// 0 when no neighbour has a variance.
+EMCV_FN float emcv_history_pool_frames(uint count, float inverse_sum) {
+    if (count == 0u || !(inverse_sum > 0.0f)) return 0.0f;
+    EMCV_PRECISE float frames = float(count) * float(count) / inverse_sum;
+    return frames;
+}
+
+/// The empirical-Bayes weight tau^2 / (tau^2 + r (m^2 + tau^2) / frames) of an estimate resting on `frames`
+/// effective frames: 0 without frames or without spread (tau^2 = 0: the spread is all noise, spend evenly),
+/// towards 1 as frames grows.
+EMCV_FN float emcv_history_shrink_weight(float frames, float mean, float between, float relative) {
+    EMCV_PRECISE float signal = between * frames;
+    EMCV_PRECISE float total = signal + relative * (mean * mean + between);
+    return total > 0.0f ? signal / total : 0.0f;
+}
+
+/// The variance the budget allocates with: w pooled + (1 - w) mean (emcv_history_shrink_weight). A pixel
+/// without a variance yet takes the mean (w = 0); emcv_history_no_samples() stays; without frame statistics
+/// (mean <= 0 or NaN: the first frames, or a frame with no variance) the pooled value is returned as it is.
+EMCV_FN float emcv_history_shrink_sigma2(float pooled, float frames, float mean, float between, float relative) {
+    if (pooled == emcv_history_no_samples() || !(mean > 0.0f)) return pooled;
+    if (!(pooled >= 0.0f)) return mean;
+    float w = emcv_history_shrink_weight(frames, mean, between, relative);
+    EMCV_PRECISE float shrunk = w * pooled + (1.0f - w) * mean;
+    return shrunk;
+}
+
+/// The frame statistics, one histogram bin: adds count (1, s2, s2^2) at the bin's centre s2 = c^2
+/// (c = emcv_budget_bin_sum(bin, 1, 512), the middle of the bin's sigma range) to the moments.
+EMCV_FN vec3 emcv_history_moments_add(EMCV_IN(vec3) moments, uint bin, uint count) {
+    float centre = emcv_budget_bin_sum(bin, 1u, 512u);
+    EMCV_PRECISE float s2 = centre * centre;
+    EMCV_PRECISE float c = float(count);
+    return vec3(moments.x + c, moments.y + c * s2, moments.z + c * s2 * s2);
+}
+
+/// 1 / frames in the units the histogram sums it in, 2^-10 (a pixel's pooled frames are >= 1, so each adds at
+/// most 1024: 2^22 pixels fit a 32-bit sum).
+EMCV_FN uint emcv_history_inverse_frames_units(float frames) { return uint(1024.0f / frames + 0.5f); }
+
+/// The next frame's prior (mean, tau^2) from the moments (pixels, sum s2, sum s2^2) of the pooled variances
+/// before shrinkage and their sum of 1 / K in 2^-10 units: the observed spread S = E[s2^2] - m^2 is
+/// tau^2 + E[v] with E[v] = r (m^2 + tau^2) E[1/K], so tau^2 = (S - r m^2 E[1/K]) / (1 + r E[1/K]), at least 0.
+/// (0, 0) without pixels.
+EMCV_FN vec2 emcv_history_frame_prior(EMCV_IN(vec3) moments, uint inverse_units, float relative) {
+    if (!(moments.x > 0.0f)) return vec2(0.0f);
+    EMCV_PRECISE float mean = moments.y / moments.x;
+    EMCV_PRECISE float spread = moments.z / moments.x - mean * mean;
+    EMCV_PRECISE float inverse = float(inverse_units) * (1.0f / 1024.0f) / moments.x;
+    EMCV_PRECISE float noise = relative * inverse;
+    EMCV_PRECISE float between = (spread - noise * mean * mean) / (1.0f + noise);
+    return vec2(mean, max(between, 0.0f));
+}
+
+/// Budget mode's r under the tunables: a batch of EMCV_HISTORY_SPP_BUDGET samples (the mean count, at least 1)
+/// of the residual's kurtosis.
+EMCV_FN float emcv_history_spend_relative_variance() {
+    return emcv_history_frame_relative_variance(emcv_history_residual_kurtosis(), max(EMCV_HISTORY_SPP_BUDGET, 1.0f));
 }
 
 /// Quality target: N = ceil(sigma2 / target) clamped to [n_min, n_max]; n_max without a variance or with a

@@ -55,7 +55,11 @@ static_assert(offsetof(EmcvBudgetBlock, planned) == 4 && offsetof(EmcvBudgetBloc
                   offsetof(EmcvBudgetBlock, zero_pixels) == 12 && offsetof(EmcvBudgetBlock, finished_groups) == 16 &&
                   offsetof(EmcvBudgetBlock, bin_count) == 20 &&
                   offsetof(EmcvBudgetBlock, bin_fraction) == 20 + 4 * EMCV_BUDGET_BINS &&
-                  sizeof(EmcvBudgetBlock) == 20 + 8 * EMCV_BUDGET_BINS,
+                  offsetof(EmcvBudgetBlock, raw_count) == 20 + 8 * EMCV_BUDGET_BINS &&
+                  offsetof(EmcvBudgetBlock, raw_inverse_frames) == 20 + 12 * EMCV_BUDGET_BINS &&
+                  offsetof(EmcvBudgetBlock, mean_sigma2) == 24 + 12 * EMCV_BUDGET_BINS &&
+                  offsetof(EmcvBudgetBlock, between_variance) == 28 + 12 * EMCV_BUDGET_BINS &&
+                  sizeof(EmcvBudgetBlock) == 32 + 12 * EMCV_BUDGET_BINS,
               "std430 EmcvBudgetBlock: the port's C++ struct has its layout");
 
 /// The port's state in the GPU layout (padding zeroed).
