@@ -1,0 +1,143 @@
+#!/usr/bin/python3
+# SPDX-License-Identifier: MIT
+"""Where an adaptive method's SSS time goes, beside burley-B's (docs/accuracy-vs-time.md, "Where the adaptive
+passes' time goes").
+
+Each variant is the shaders of this tree with one piece of the adaptive work cut out: a copy of shaders/ in a
+temporary folder with one text replacement, read by the renderer through EMCV_SHADER_DIR (the port headers stay
+the tree's). The script refuses when a replacement's anchor is no longer in the shader, so a variant cannot
+silently measure the unchanged pass. Every run is emcv-demo with burley-B and the method side by side (frame
+by frame, the same load on both), the variants interleaved round by round; per run, each pass's median over
+frames FIRST.. is divided by burley-B's pass median of the same run, and the table gives the median of those
+ratios over the rounds. A cut changes what the other pass sees (no flush: the burley pass reads a stale
+lambda; no reprojection: every pixel takes the uniform share), so a row's number that answers a question is
+the pass it cut; the table says which.
+
+Usage: /usr/bin/python3 scripts/eval/adaptive_overhead.py [--build build] [--scene light-off] [--size 256x256]
+           [--frames 16] [--first 4] [--rounds 3] [--spp-budget 8] [--method cv] [--write-doc]
+With --write-doc the table replaces the GENERATED block "adaptive-overhead" of docs/accuracy-vs-time.md.
+"""
+import argparse
+import json
+import os
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+
+from run_eval import git_commit, replace_block, write_atomically
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+SAMPLES = "adaptive/samples.comp.glsl"
+BUDGET = "adaptive/budget_block.h"
+BURLEY = "render/sss_burley.comp.glsl"
+
+# (name, the pass it answers for, [(file, anchor, replacement)])
+VARIANTS = [
+    ("as built", "both", []),
+    ("no reprojection: every history fresh (no previous G-buffer or history reads)", "samples",
+     [(SAMPLES, "    if (emcv_adaptive_reproject(p, code, a, b)) {", "    if (false) {")]),
+    ("no 3x3 pooling", "samples",
+     [(SAMPLES, "    for (int dy = -1; dy <= 1; ++dy) {", "    for (int dy = 0; dy < 0; ++dy) {")]),
+    ("budget: the workgroup histogram only (no flush to the frame's, no last-workgroup solve)", "samples",
+     [(BUDGET, "    barrier();  // every pixel of the workgroup is in its histogram\n",
+       "    barrier();  // every pixel of the workgroup is in its histogram\n    return;\n")]),
+    ("budget: flush, but no last-workgroup detection or solve", "samples",
+     [(BUDGET, "    memoryBarrierBuffer();  // this thread's histogram atomics are done before its workgroup counts "
+               "as finished\n    barrier();", "    return;")]),
+    ("no budget work at all (histogram, flush, solve)", "samples",
+     [(SAMPLES, "        emcv_budget_add(sigma2);\n", ""),
+      (SAMPLES, "    if (emcv_history_budget_mode()) emcv_budget_group_clear(here);", ""),
+      (SAMPLES, "    if (emcv_history_budget_mode()) emcv_budget_finish_group(here, gl_NumWorkGroups.x * "
+                "gl_NumWorkGroups.y);", "")]),
+    ("burley pass: every pixel takes B (no divergence; the history update runs)", "burley",
+     [(BURLEY, "    uint n = adaptive_count(p);\n", "    uint n = adaptive_count(p);\n    n = uint(EMCV_HISTORY_SPP_BUDGET);\n")]),
+    ("burley pass: no history update", "burley",
+     [(BURLEY, "    emcv_adaptive_update(p, imageLoad(out_scattered, p).xyz, centre, n);\n", "")]),
+]
+
+
+def make_variant(root, edits):
+    if not edits:
+        return os.path.join(ROOT, "shaders")
+    shutil.copytree(os.path.join(ROOT, "shaders"), root)
+    for file, anchor, replacement in edits:
+        path = os.path.join(root, file)
+        with open(path) as f:
+            text = f.read()
+        if text.count(anchor) != 1:
+            sys.exit(f"adaptive_overhead.py: the anchor of a variant is not (once) in shaders/{file}: {anchor!r}")
+        with open(path, "w") as f:
+            f.write(text.replace(anchor, replacement))
+    return root
+
+
+def run(a, shader_dir, out):
+    baseline = f"burley-{a.spp_budget}"
+    cmd = [os.path.join(a.build, "bin", "emcv-demo"), "--scene", a.scene, "--size", a.size, "--frames",
+           str(a.frames), "--method", f"{baseline},{a.method}", "--spp-budget", str(a.spp_budget), "--resolve",
+           "none", "--no-frames", "--out", out]
+    subprocess.run(cmd, check=True, capture_output=True, text=True, env=dict(os.environ, EMCV_SHADER_DIR=shader_dir))
+    with open(os.path.join(out, "metrics.json")) as f:
+        m = json.load(f)
+    times, clock = {}, m.get("timing", "?")
+    for r in m["rows"]:
+        if r["frame"] < a.first:
+            continue
+        for p in r["passes"]:
+            if p["name"].startswith("sss"):
+                times.setdefault((r["method"], p["name"]), []).append(p["ms"])
+    base = statistics.median(times[(baseline, "sss-burley")])
+    ratio = {name: statistics.median(v) / base for (method, name), v in times.items() if method == a.method}
+    return ratio, base, clock
+
+
+def main(argv):
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("--build", default=os.path.join(ROOT, "build"))
+    p.add_argument("--scene", default="light-off")
+    p.add_argument("--size", default="256x256")
+    p.add_argument("--frames", type=int, default=16)
+    p.add_argument("--first", type=int, default=4)
+    p.add_argument("--rounds", type=int, default=3)
+    p.add_argument("--spp-budget", type=int, default=8)
+    p.add_argument("--method", default="cv")
+    p.add_argument("--write-doc", action="store_true", help="replace the adaptive-overhead block of "
+                                                            "docs/accuracy-vs-time.md")
+    a = p.parse_args(argv)
+    if a.rounds < 1 or a.first >= a.frames:
+        sys.exit("adaptive_overhead.py: need --rounds >= 1 and --first < --frames")
+    ratios = {v[0]: [] for v in VARIANTS}
+    bases, clock = [], "?"
+    with tempfile.TemporaryDirectory() as tmp:
+        dirs = {name: make_variant(os.path.join(tmp, f"v{i}"), edits) for i, (name, _, edits) in enumerate(VARIANTS)}
+        for k in range(a.rounds):
+            for name, _, _ in VARIANTS:
+                r, base, clock = run(a, dirs[name], os.path.join(tmp, "out"))
+                ratios[name].append(r)
+                bases.append(base)
+    lines = [f"{a.scene}, {a.size}, {a.method} at a budget of {a.spp_budget} beside burley-{a.spp_budget} (the same "
+             f"emcv-demo run), frames {a.first}-{a.frames - 1}, {a.rounds} rounds interleaved, clock {clock}; "
+             f"burley-{a.spp_budget}'s pass: median {statistics.median(bases):.3f} ms", "",
+             f"| variant (one cut) | answers for | samples pass / burley-{a.spp_budget} | burley pass / "
+             f"burley-{a.spp_budget} | both / burley-{a.spp_budget} |", "|---|---|---:|---:|---:|"]
+    for name, answers, _ in VARIANTS:
+        rs = ratios[name]
+        s = statistics.median(r.get("sss-adaptive-samples", 0.0) for r in rs)
+        b = statistics.median(r.get("sss-burley", 0.0) for r in rs)
+        t = statistics.median(sum(r.values()) for r in rs)
+        lines.append(f"| {name} | {answers} | {s:.2f} | {b:.2f} | {t:.2f} |")
+    table = "\n".join(lines)
+    print(table)
+    if a.write_doc:
+        doc = os.path.join(ROOT, "docs", "accuracy-vs-time.md")
+        command = " ".join(["/usr/bin/python3 scripts/eval/adaptive_overhead.py"] + argv)
+        with open(doc) as f:
+            text = f.read()
+        write_atomically(doc, replace_block(text, "adaptive-overhead", f"Regenerated by `{command}`, made at "
+                                                                        f"commit {git_commit()}.\n\n{table}"))
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
