@@ -130,6 +130,17 @@ inline void check_pixels(const void* pointer, std::size_t pixels, const char* wh
     require(pointer != nullptr || pixels == 0, where, what);
 }
 
+/// The checks every per-pixel read of the states starts with: valid parameters, the estimator's state type,
+/// states and output arrays not null.
+template <class State>
+void check_state_read(const sampling_params& p, const State* states, std::size_t pixels, const float* out,
+                      const char* where) {
+    check_sampling_params(p);
+    check_state_type<State>(p, where);
+    check_pixels(states, pixels, where, "states must not be null");
+    check_pixels(out, pixels, where, "out must not be null");
+}
+
 /// One pixel's push, as shaders/adaptive/update.comp.glsl (n > 0 only).
 inline void push(const sampling_params&, float eta, port::EmcvEmcm2& s, float f, float g, float n) {
     port::emcv_history_push_cv(s, f, g, eta, n);
@@ -186,11 +197,7 @@ void sampling_update(const sampling_params& p, State* states, std::size_t pixels
 template <class State>
 void sampling_sigma2(const sampling_params& p, const State* states, std::size_t pixels, const std::uint8_t* sub_pixel,
                      float* out) {
-    constexpr const char* where = "emcv::sampling_sigma2";
-    check_sampling_params(p);
-    detail::check_state_type<State>(p, where);
-    detail::check_pixels(states, pixels, where, "states must not be null");
-    detail::check_pixels(out, pixels, where, "out must not be null");
+    detail::check_state_read(p, states, pixels, out, "emcv::sampling_sigma2");
     const float eta = sampling_eta(p);
     const bool skips = sub_pixel != nullptr && p.estimator != sampling_estimator::spvg;
     for (std::size_t i = 0; i < pixels; ++i)
@@ -203,11 +210,7 @@ void sampling_sigma2(const sampling_params& p, const State* states, std::size_t 
 /// the parameters are invalid, the state type is not the estimator's, or an array is null.
 template <class State>
 void sampling_frames(const sampling_params& p, const State* states, std::size_t pixels, float* out) {
-    constexpr const char* where = "emcv::sampling_frames";
-    check_sampling_params(p);
-    detail::check_state_type<State>(p, where);
-    detail::check_pixels(states, pixels, where, "states must not be null");
-    detail::check_pixels(out, pixels, where, "out must not be null");
+    detail::check_state_read(p, states, pixels, out, "emcv::sampling_frames");
     const float eta = sampling_eta(p);
     for (std::size_t i = 0; i < pixels; ++i) out[i] = detail::frames_of(states[i], eta);
 }
