@@ -26,7 +26,10 @@ PIXEL = {
     # adaptive samples pass (cv): motion RG16F 4, normal 8, previous depth 4, normal 8, material 1, history a
     # RGBA32F 16 and b RG32F 8 (read), this frame's history a and b (written 24), N or sigma^2 4; sub-pixel test:
     # material block 16, albedo 8; sigma: a division and a sqrt; the world position's projection: a division.
-    "adaptive samples (cv)": {"bytes": 4 + 8 + 4 + 8 + 1 + 24 + 24 + 4 + 16 + 8, "sfu": 6},
+    # Budget shrinkage (emcv_history_shrink_sigma2): the effective frames a division, the pool's 1 / K_j for up to
+    # 9 neighbours and its K a division, the weight a division, 1 / K in the frame's sum a division, the raw
+    # histogram's sqrt (14; its histograms are shared memory and a few atomics per tile, no DRAM per pixel).
+    "adaptive samples (cv)": {"bytes": 4 + 8 + 4 + 8 + 1 + 24 + 24 + 4 + 16 + 8, "sfu": 6 + 1 + 9 + 1 + 1 + 1 + 1},
     # history update inside the burley pass (cv): N or sigma^2 4, history a and b read 24 and written 24, its own
     # output read back 8, albedo 8; gamma luminance of f and G: 2 pow (4); EMCM push: divisions (3), the 5-sigma
     # test: a division; budget: sqrt of sigma^2.
