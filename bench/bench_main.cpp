@@ -447,7 +447,7 @@ void set_policy_counters(benchmark::State& state, std::vector<double>& frame_ms,
     state.counters["state_bytes"] = static_cast<double>(state_size * pixels);
 }
 
-/// One frame of the policy: plan (variance codes, histogram and solve under a budget, counts), then the
+/// One frame of the policy: plan (variance codes; under a budget the shrinkage, histogram and solve; counts), then the
 /// update with this frame's (f, G) and counts. Timed with std::chrono::steady_clock per frame (manual time);
 /// the counter median_frame_ms is the median over the run's frames.
 template <class State>
@@ -464,12 +464,13 @@ void register_policy(const char* name, emcv::sampling_estimator estimator, emcv:
         for (std::size_t i = 0; i < pixels; ++i) g[i] = static_cast<float>(0.5 + 0.25 * u.next());
         std::vector<double> frame_ms;
         std::uint32_t frame = 0;
+        emcv::budget_prior prior;  // the budget's shrinkage statistics, carried from frame to frame as an engine does
         for (auto _ : state) {
             for (std::size_t i = 0; i < pixels; ++i)  // a new noisy f each frame, outside the timed region
                 f[i] = g[i] * static_cast<float>(1.0 + 0.05 * u.next());
             const auto start = std::chrono::steady_clock::now();
             const emcv::frame_plan plan = emcv::plan_frame(p, states.data(), pixels, width, nullptr, nullptr, frame++,
-                                                           1u, sigma2.data(), n.data());
+                                                           1u, sigma2.data(), n.data(), prior);
             emcv::sampling_update(p, states.data(), pixels, f.data(), g.data(), n.data());
             const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
             benchmark::DoNotOptimize(plan.samples);
