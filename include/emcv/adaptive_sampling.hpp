@@ -40,7 +40,6 @@
 #include <cstdint>
 #include <optional>
 #include <type_traits>
-#include <vector>
 
 #include "detail/common.hpp"
 #include "port/history.h"
@@ -219,6 +218,61 @@ void sampling_frames(const sampling_params& p, const State* states, std::size_t 
 /// shaders/render/bindings.h), aligned at multiples of it from the image's pixel (0, 0).
 inline constexpr std::size_t sampling_tile_size = 8;
 
+namespace detail {
+
+/// sampling_pool's tiles: pools `own` into `out` (which may be `own`) and calls pooled(i, frames) right after
+/// writing out[i], with the pool's effective frames from own_frames(i) of its neighbours (0 where the pixel does
+/// not scatter). One tile at a time through a copy, as the shader's shared memory: every neighbour pooled lies in
+/// the pixel's tile, so writing a tile's results (out[i], and whatever pooled writes at i) never changes what
+/// another tile reads.
+template <class OwnFrames, class Pooled>
+void pool_tiles(const float* own, std::size_t pixels, std::size_t width, const std::uint32_t* material, float* out,
+                OwnFrames own_frames, Pooled pooled, const char* where) {
+    require(width > 0 && pixels % width == 0, where, "width must be > 0 and divide the pixel count");
+    constexpr std::size_t tile = sampling_tile_size;
+    const std::size_t height = pixels / width;
+    float tile_sigma2[tile * tile];
+    float tile_frames[tile * tile];
+    std::uint32_t tile_code[tile * tile];
+    for (std::size_t y0 = 0; y0 < height; y0 += tile) {
+        for (std::size_t x0 = 0; x0 < width; x0 += tile) {
+            const std::size_t w = width - x0 < tile ? width - x0 : tile, h = height - y0 < tile ? height - y0 : tile;
+            for (std::size_t ly = 0; ly < h; ++ly)
+                for (std::size_t lx = 0; lx < w; ++lx) {
+                    const std::size_t i = (y0 + ly) * width + x0 + lx;
+                    tile_code[ly * tile + lx] = material != nullptr ? material[i] : 1u;
+                    tile_sigma2[ly * tile + lx] = own[i];
+                    tile_frames[ly * tile + lx] = own_frames(i);
+                }
+            for (std::size_t ly = 0; ly < h; ++ly)
+                for (std::size_t lx = 0; lx < w; ++lx) {
+                    const std::size_t here = ly * tile + lx, i = (y0 + ly) * width + x0 + lx;
+                    const std::uint32_t code = tile_code[here];
+                    if (code == 0u) {
+                        out[i] = port::emcv_history_no_samples();
+                        pooled(i, 0.0f);
+                        continue;
+                    }
+                    float sum = 0.0f, inverse_frames = 0.0f;
+                    std::uint32_t count = 0u;
+                    // lx - 1 and ly - 1 wrap below 0 to a huge value: the `< w`, `< h` tests skip them as the
+                    // shader skips q < 0.
+                    for (std::size_t qy = ly - 1; qy != ly + 2; ++qy)
+                        for (std::size_t qx = lx - 1; qx != lx + 2; ++qx) {
+                            if (qx >= w || qy >= h || tile_code[qy * tile + qx] != code) continue;
+                            port::emcv_history_pool_add_frames(inverse_frames, tile_sigma2[qy * tile + qx],
+                                                               tile_frames[qy * tile + qx]);
+                            port::emcv_history_pool_add(sum, count, tile_sigma2[qy * tile + qx]);
+                        }
+                    out[i] = port::emcv_history_pool_sigma2(tile_sigma2[here], sum, count);
+                    pooled(i, port::emcv_history_pool_frames(count, inverse_frames));
+                }
+        }
+    }
+}
+
+}  // namespace detail
+
 /// The variance codes a frame is allocated with, as the renderer's adaptive-samples pass pools them: out[i] is
 /// port::emcv_history_pool_sigma2(own[i], sum, count), sum and count accumulated by
 /// port::emcv_history_pool_add over pixel i's 3x3 neighbours (dy then dx from -1 to 1, i itself included) that
@@ -240,49 +294,13 @@ inline void sampling_pool(const float* own, std::size_t pixels, std::size_t widt
     detail::check_pixels(out, pixels, where, "out must not be null");
     detail::require((own_frames == nullptr) == (frames_out == nullptr), where,
                     "own_frames and frames_out must be given together (both or neither)");
-    detail::require(width > 0 && pixels % width == 0, where, "width must be > 0 and divide the pixel count");
-    constexpr std::size_t tile = sampling_tile_size;
-    const std::size_t height = pixels / width;
-    // One tile at a time through a copy, as the shader's shared memory: every neighbour pooled lies in the
-    // pixel's tile, so writing a tile's results never changes what another tile reads (in place is safe).
-    float tile_sigma2[tile * tile];
-    float tile_frames[tile * tile];
-    std::uint32_t tile_code[tile * tile];
-    for (std::size_t y0 = 0; y0 < height; y0 += tile) {
-        for (std::size_t x0 = 0; x0 < width; x0 += tile) {
-            const std::size_t w = width - x0 < tile ? width - x0 : tile, h = height - y0 < tile ? height - y0 : tile;
-            for (std::size_t ly = 0; ly < h; ++ly)
-                for (std::size_t lx = 0; lx < w; ++lx) {
-                    const std::size_t i = (y0 + ly) * width + x0 + lx;
-                    tile_code[ly * tile + lx] = material != nullptr ? material[i] : 1u;
-                    tile_sigma2[ly * tile + lx] = own[i];
-                    tile_frames[ly * tile + lx] = own_frames != nullptr ? own_frames[i] : 0.0f;
-                }
-            for (std::size_t ly = 0; ly < h; ++ly)
-                for (std::size_t lx = 0; lx < w; ++lx) {
-                    const std::size_t here = ly * tile + lx, i = (y0 + ly) * width + x0 + lx;
-                    const std::uint32_t code = tile_code[here];
-                    if (code == 0u) {
-                        out[i] = port::emcv_history_no_samples();
-                        if (frames_out != nullptr) frames_out[i] = 0.0f;
-                        continue;
-                    }
-                    float sum = 0.0f, inverse_frames = 0.0f;
-                    std::uint32_t count = 0u;
-                    // lx - 1 and ly - 1 wrap below 0 to a huge value: the `< w`, `< h` tests skip them as the
-                    // shader skips q < 0.
-                    for (std::size_t qy = ly - 1; qy != ly + 2; ++qy)
-                        for (std::size_t qx = lx - 1; qx != lx + 2; ++qx) {
-                            if (qx >= w || qy >= h || tile_code[qy * tile + qx] != code) continue;
-                            port::emcv_history_pool_add_frames(inverse_frames, tile_sigma2[qy * tile + qx],
-                                                               tile_frames[qy * tile + qx]);
-                            port::emcv_history_pool_add(sum, count, tile_sigma2[qy * tile + qx]);
-                        }
-                    out[i] = port::emcv_history_pool_sigma2(tile_sigma2[here], sum, count);
-                    if (frames_out != nullptr) frames_out[i] = port::emcv_history_pool_frames(count, inverse_frames);
-                }
-        }
-    }
+    detail::pool_tiles(
+        own, pixels, width, material, out,
+        [own_frames](std::size_t i) { return own_frames != nullptr ? own_frames[i] : 0.0f; },
+        [frames_out](std::size_t i, float frames) {
+            if (frames_out != nullptr) frames_out[i] = frames;
+        },
+        where);
 }
 
 /// The budget's histogram of sigma: port::EmcvBudgetBlock, the storage block the GPU passes share (the same
@@ -474,8 +492,7 @@ struct frame_plan {
 /// pixels / width rows); material[i] is the pixel's material id, 0 where it does not scatter (0 samples, out of
 /// the pooling and the budget), and may be null (every pixel scatters, one material); sub_pixel may be null (no
 /// sub-pixel kernels). frame and seed salt the budget's stochastic rounding (the renderer passes its frame index
-/// and seed). Under a budget it allocates `pixels` floats (the effective frames). Throws std::invalid_argument as
-/// the functions it calls.
+/// and seed). It allocates nothing. Throws std::invalid_argument as the functions it calls.
 template <class State>
 frame_plan plan_frame(const sampling_params& p, const State* states, std::size_t pixels, std::size_t width,
                       const std::uint32_t* material, const std::uint8_t* sub_pixel, std::uint32_t frame,
@@ -483,13 +500,22 @@ frame_plan plan_frame(const sampling_params& p, const State* states, std::size_t
     sampling_sigma2(p, states, pixels, sub_pixel, sigma2_out);
     frame_plan plan;
     if (p.mode == sampling_mode::budget) {
-        std::vector<float> frames(pixels);
-        sampling_frames(p, states, pixels, frames.data());
-        sampling_pool(sigma2_out, pixels, width, material, sigma2_out, frames.data(), frames.data());
+        // sampling_frames, sampling_pool, budget_add_raw and sampling_shrink in one sweep: each pixel's pooled
+        // variance is added to the frame statistics and shrunk as soon as it is pooled, its own frames read from
+        // the states, so no per-frame array is allocated.
+        const float eta = sampling_eta(p);
+        const float relative = budget_relative_variance(p);
         budget_histogram h = make_budget_histogram();
-        for (std::size_t i = 0; i < pixels; ++i) budget_add_raw(h, sigma2_out[i], frames[i]);
+        detail::pool_tiles(
+            sigma2_out, pixels, width, material, sigma2_out,
+            [states, eta](std::size_t i) { return detail::frames_of(states[i], eta); },
+            [&h, &prior, sigma2_out, relative](std::size_t i, float frames) {
+                budget_add_raw(h, sigma2_out[i], frames);
+                sigma2_out[i] = port::emcv_history_shrink_sigma2(sigma2_out[i], frames, prior.mean_sigma2,
+                                                                 prior.between_variance, relative);
+            },
+            "emcv::plan_frame");
         const budget_prior next = budget_frame_prior(p, h);
-        sampling_shrink(p, prior, sigma2_out, frames.data(), pixels);
         budget_add(h, sigma2_out, pixels, material);
         plan.lambda = budget_solve(p, h);
         prior = next;
