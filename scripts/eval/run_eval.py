@@ -1094,11 +1094,11 @@ def plot_scaling(groups, key, xlabel, name, out_dir, device):
 
 # ---------------------------------------------------------------------------------------------------- assembling
 
-def replace_block(text, name, body):
+def replace_block(text, name, body, path=DOC):
     begin, end = f"<!-- BEGIN GENERATED: {name} -->", f"<!-- END GENERATED: {name} -->"
     i, j = text.find(begin), text.find(end)
     if i < 0 or j < 0:
-        die(f"{DOC}: no {begin} ... {end} block")
+        die(f"{path}: no {begin} ... {end} block")
     return text[:i + len(begin)] + "\n" + body.strip() + "\n" + text[j:]
 
 
