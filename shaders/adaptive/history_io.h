@@ -59,6 +59,42 @@ void emcv_adaptive_store_raw(ivec2 p, vec4 a, vec4 b) {
 #endif
 }
 
+/// Resampling a reprojected history: adds w times a neighbour's statistics (the means and comoments, not the
+/// count) to a running blend (emcv_adaptive_blend_zero() to start).
+EmcvAdaptiveState emcv_adaptive_blend_zero() {
+#if defined(EMCV_ADAPTIVE_CV)
+    EmcvEmcm2 s = emcv_emcm2_init();
+    s.mean = vec2(0.0f);
+    s.cov = vec3(0.0f);
+#else
+    EmcvMovingStats s = emcv_moving_stats_init();
+    s.mean = 0.0f;
+    s.variance = 0.0f;
+#endif
+    return s;
+}
+
+void emcv_adaptive_blend_add(inout EmcvAdaptiveState blend, float w, EmcvAdaptiveState s) {
+#if defined(EMCV_ADAPTIVE_CV)
+    blend.mean += w * s.mean;
+    blend.cov += w * s.cov;
+#else
+    blend.mean += w * s.mean;
+    blend.variance += w * s.variance;
+#endif
+}
+
+/// The blend's statistics, divided by its weight, into state s (whose count and flags stay).
+void emcv_adaptive_blend_finish(inout EmcvAdaptiveState s, EmcvAdaptiveState blend, float weight) {
+#if defined(EMCV_ADAPTIVE_CV)
+    s.mean = blend.mean / weight;
+    s.cov = blend.cov / weight;
+#else
+    s.mean = blend.mean / weight;
+    s.variance = blend.variance / weight;
+#endif
+}
+
 /// The method's per-sample variance from its state (emcv_history_no_variance() before two frames): spvg f's,
 /// cv the residual's at the EMCM's alpha, cv-notex the residual's at alpha = 1.
 float emcv_adaptive_sigma2(EmcvAdaptiveState s) {

@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: MIT
 // shaders/adaptive/samples.comp.glsl — the adaptive-samples pass of every adaptive method (the renderer defines the
-// method's EMCV_ADAPTIVE_* from its row of the method table): over the SSS
-// tiles, each SSS pixel fetches last frame's history at its reprojected position (motion vectors, point
-// sampling), keeps it only when the position is on screen and the surface is the same (material, depth,
-// normal: emcv_history_reusable) and the texel is not poisoned, writes that state (or a fresh one) into this
-// frame's history, and writes what the burley pass takes (EMCV_ADAPTIVE_IMG_SAMPLES) from the history's per-sample
-// variance: N under a quality target; under a budget the variance shrunk towards the previous frame's mean
-// (emcv_history_shrink_sigma2), as its bits, added to the histogram
-// from which the pass's last workgroup solves lambda before the burley pass computes N (emcv/port/budget.h,
-// adaptive/budget_block.h): one pass, no solve dispatch of its own.
+// method's EMCV_ADAPTIVE_* from its row of the method table): over the SSS tiles, each SSS pixel fetches last
+// frame's history at its reprojected position (motion vectors; the texel there decides, its statistics resampled
+// bilinearly over the texels of the same surface), keeps it only when the position is on screen and the surface is
+// the same (material, depth, normal: emcv_history_reusable) and the texel is not poisoned, writes that state (or a
+// fresh one) into this frame's history, and writes what the burley pass takes (EMCV_ADAPTIVE_IMG_SAMPLES) from the
+// history's per-sample variance: N under a quality target; under a budget the variance shrunk towards the previous
+// frame's mean (emcv_history_shrink_sigma2), as its bits, added to the histogram from which the pass's last
+// workgroup solves lambda before the burley pass computes N (emcv/port/budget.h, adaptive/budget_block.h): one
+// pass, no solve dispatch of its own.
 #version 450 core
 
 #define EMCV_BUDGET_GROUP_THREADS (EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE)
@@ -23,24 +23,57 @@ layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_PREV_DEPTH)) uniform sampler2D prev
 layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_PREV_NORMAL)) uniform sampler2D prev_normal;
 layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_PREV_MATERIAL)) uniform usampler2D prev_material;
 
-/// Last frame's raw history texels for pixel p, or false (disoccluded, off-screen, first frame, poisoned).
-/// The texels are copied as stored, not decoded and encoded again: a second binary16 store per frame would
-/// round twice (llvmpipe's float -> half store truncates; measured 2 ulps of drift against one rounding).
-bool emcv_adaptive_reproject(ivec2 p, uint material, out vec4 a, out vec4 b) {
+/// Whether last frame's texel q shows the surface pixel p shows now (emcv_history_reusable; false off screen).
+bool emcv_adaptive_same_surface(ivec2 q, uint material, float expected_prev_depth, vec3 normal) {
+    if (!emcv_render_on_screen(q)) return false;
+    return emcv_history_reusable(material, texelFetch(prev_material, q, 0).x, expected_prev_depth,
+                                 abs(texelFetch(prev_depth, q, 0).x), normal, texelFetch(prev_normal, q, 0).xyz);
+}
+
+/// Last frame's history for pixel p in s, or false (disoccluded, off-screen, first frame, poisoned). The texel
+/// under p's previous position decides (the surface test, a poisoned texel) and gives the count. Its means and
+/// comoments are then resampled at the previous position: bilinear over the 2x2 texels around it that show this
+/// surface and hold a valid history of at least one frame. A point-sampled history would be the surface point up to
+/// half a pixel away, and under a moving camera that offset's signal difference would enter the next frame's
+/// residual as noise every frame (docs/renderer.md, "Reprojection"). `resampled` is false where the position is a
+/// texel centre (a still camera): then `a` and `b` hold the texel as stored, copied without a second rounding
+/// (llvmpipe's float -> half store truncates; measured 2 ulps of drift against one rounding).
+bool emcv_adaptive_reproject(ivec2 p, uint material, out vec4 a, out vec4 b, out EmcvAdaptiveState s,
+                             out bool resampled) {
     a = vec4(0.0f);
     b = vec4(0.0f);
-    // The previous position of p's centre, point-sampled.
-    ivec2 q = ivec2(floor(emcv_render_previous_position(p)));
-    if (!emcv_render_on_screen(q)) return false;
+    s = emcv_adaptive_init();
+    resampled = false;
+    vec2 previous = emcv_render_previous_position(p);
+    ivec2 q = ivec2(floor(previous));
     float expected_prev_depth = emcv_render_previous_depth(p, emcv_render_depth(p));
-    bool same_surface = emcv_history_reusable(material, texelFetch(prev_material, q, 0).x, expected_prev_depth,
-                                              abs(texelFetch(prev_depth, q, 0).x), texelFetch(gbuffer_normal, p, 0).xyz,
-                                              texelFetch(prev_normal, q, 0).xyz);
-    if (!same_surface) return false;
+    vec3 normal = texelFetch(gbuffer_normal, p, 0).xyz;
+    if (!emcv_adaptive_same_surface(q, material, expected_prev_depth, normal)) return false;
     a = texelFetch(history_prev_a, q, 0);
     b = texelFetch(history_prev_b, q, 0);
-    EmcvAdaptiveState kept;
-    return emcv_adaptive_decode(a, b, kept);
+    if (!emcv_adaptive_decode(a, b, s)) return false;
+    vec2 x = previous - 0.5f;  // in texel-centre coordinates
+    ivec2 base = ivec2(floor(x));
+    vec2 t = x - vec2(base);
+    if (t == vec2(0.0f) || s.count < 1u) return true;
+    EmcvAdaptiveState blend = emcv_adaptive_blend_zero();
+    float weight = 0.0f;
+    for (int k = 0; k < 4; ++k) {
+        ivec2 o = ivec2(k & 1, k >> 1);
+        float w = (o.x == 1 ? t.x : 1.0f - t.x) * (o.y == 1 ? t.y : 1.0f - t.y);
+        ivec2 r = base + o;
+        if (w == 0.0f || !emcv_adaptive_same_surface(r, material, expected_prev_depth, normal)) continue;
+        EmcvAdaptiveState neighbour;
+        if (!emcv_adaptive_decode(texelFetch(history_prev_a, r, 0), texelFetch(history_prev_b, r, 0), neighbour) ||
+            neighbour.count < 1u)
+            continue;
+        emcv_adaptive_blend_add(blend, w, neighbour);
+        weight += w;
+    }
+    // q is one of the four (the nearest, weight >= 1/4) and passed both tests: weight > 0.
+    emcv_adaptive_blend_finish(s, blend, weight);
+    resampled = true;
+    return true;
 }
 
 // The pixels of this 8x8 tile: their per-sample variance (or code) and material, for the 3x3 pooling below.
@@ -63,12 +96,12 @@ float own_sigma2(ivec2 p, out uint code, out float frames) {
         return emcv_history_no_samples();
     }
     vec4 a, b;
-    EmcvAdaptiveState s = emcv_adaptive_init();
-    if (emcv_adaptive_reproject(p, code, a, b)) {
-        emcv_adaptive_decode(a, b, s);
+    EmcvAdaptiveState s;
+    bool resampled;
+    if (emcv_adaptive_reproject(p, code, a, b, s, resampled) && !resampled) {
         emcv_adaptive_store_raw(p, a, b);
     } else {
-        emcv_adaptive_store(p, s);
+        emcv_adaptive_store(p, s);  // resampled, or a fresh state
     }
     frames = emcv_adaptive_effective_frames(s);
     return emcv_adaptive_sub_pixel(p, code) ? emcv_history_no_samples() : emcv_adaptive_sigma2(s);

@@ -7,6 +7,9 @@
 //                rebuilt from the library's own estimators (emcv::emcm, emcv::moving_stats,
 //                emcv::cv_optimal_residual_variance, emcv::sample_count) and the per-sample scaling.
 //   disocclusion a pixel whose material, depth or normal changed, or whose motion leads off screen, restarts.
+//   resampling   a fractional motion blends the statistics of the 2x2 texels around the previous position
+//                (bilinear weights, texels of the same surface and valid state only); the texel it falls in
+//                gives the count.
 //   poison       a NaN/Inf/negative stored state is refused and restarted, and its neighbours are untouched.
 //
 // Parity bounds (docs/porting.md): the port's estimator fields are bit-equal between CPU and GPU for equal
@@ -423,6 +426,78 @@ TEST_CASE("disocclusion and off-screen motion restart the history; the rest keep
     for (std::size_t i : {std::size_t(0), std::size_t(5), std::size_t(6), std::size_t(20)}) {
         INFO("pixel " << i);
         CHECK(t[i].a.w == 5.0f);  // kept
+    }
+    CHECK(messenger.error_count() == 0);
+}
+
+TEST_CASE("a fractional motion resamples the history bilinearly over the texels of the same surface") {
+    emcv::gl::context ctx = emcv::test::context_or_skip();
+    emcv::gl::debug_messenger messenger;
+    for (const kind k : {kind::spvg, kind::cv}) {
+        INFO("method " << (k == kind::spvg ? "spvg" : "cv"));
+        harness hx;
+        history h(emcv::demo::method{k, 0}, width, height, shader_options(), emcv_test::shader_dir());
+        std::vector<float> g, f;
+        for (int frame = 0; frame < 4; ++frame) {
+            light_at(frame, g, f);
+            hx.set_light(g, f);
+            hx.frame(h, k);
+        }
+        std::vector<texel> before = h.read();
+        // Texel 22 poisoned: pixel 23's blend must leave it out.
+        before[22].a.x = std::numeric_limits<float>::quiet_NaN();
+        h.write_previous(before);
+        // The previous position is p + 0.5 - motion; the blend weighs the texels around it bilinearly, the texel
+        // it falls in decides and gives the count. Pixel 5 (5, 0): previous (6.0, 0.5), texels 5 and 6 at 1/2
+        // each, count of 6. Pixel 20 (4, 1): previous (4.75, 2.0), texels 20 and 36 at 3/8, 21 and 37 at 1/8,
+        // count of 36. Pixel 23 (7, 1): previous (7.0, 1.5), texels 22 (poisoned) and 23 at 1/2: 23 alone.
+        struct expectation {
+            std::size_t pixel;
+            glm::vec2 motion;
+            std::vector<std::pair<std::size_t, float>> texels;
+            std::size_t decides;
+        };
+        const std::vector<expectation> cases = {
+            {5, {-0.5f, 0.0f}, {{5, 0.5f}, {6, 0.5f}}, 6},
+            {20, {-0.25f, -0.5f}, {{20, 0.375f}, {21, 0.125f}, {36, 0.375f}, {37, 0.125f}}, 36},
+            {23, {0.5f, 0.0f}, {{23, 0.5f}}, 23},
+        };
+        // No samples taken at the three pixels: their stored state is the reprojected one, unpushed.
+        std::vector<std::uint32_t> taken(pixels, 1u);
+        for (const expectation& c : cases) {
+            hx.motions[c.pixel] = c.motion;
+            taken[c.pixel] = 0u;
+        }
+        hx.upload_geometry();
+        hx.set_taken(taken);
+        light_at(4, g, f);
+        hx.set_light(g, f);
+        hx.frame(h, k);
+        const std::vector<texel> after = h.read();
+        for (const expectation& c : cases) {
+            INFO("pixel " << c.pixel);
+            double weight = 0.0;
+            glm::dvec4 a(0.0);
+            glm::dvec2 b(0.0);
+            for (const auto& [texel_index, w] : c.texels) {
+                weight += w;
+                a += double(w) * glm::dvec4(before[texel_index].a);
+                b += double(w) * glm::dvec2(before[texel_index].b);
+            }
+            a /= weight;
+            b /= weight;
+            if (k == kind::cv) {
+                // fp32 fields: (C_ff, C_fG, C_GG, count) and (mean_f, mean_G).
+                for (int j = 0; j < 3; ++j) CHECK(std::abs(double(after[c.pixel].a[j]) - a[j]) <= 1e-6 * std::abs(a[j]) + 1e-12);
+                for (int j = 0; j < 2; ++j) CHECK(std::abs(double(after[c.pixel].b[j]) - b[j]) <= 1e-6 * std::abs(b[j]));
+                CHECK(after[c.pixel].a.w == before[c.decides].a.w);
+            } else {
+                // binary16 fields (mean, variance / unit, count): one rounding of the blend.
+                CHECK(half_ulps(after[c.pixel].a.x, half(float(a.x))) <= 1);
+                CHECK(half_ulps(after[c.pixel].a.y, half(float(a.y))) <= 1);
+                CHECK(after[c.pixel].a.z == before[c.decides].a.z);
+            }
+        }
     }
     CHECK(messenger.error_count() == 0);
 }
