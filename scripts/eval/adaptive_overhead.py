@@ -37,7 +37,8 @@ BURLEY = "render/sss_burley.comp.glsl"
 VARIANTS = [
     ("as built", "both", []),
     ("no reprojection: every history fresh (no previous G-buffer or history reads)", "samples",
-     [(SAMPLES, "    if (emcv_adaptive_reproject(p, code, a, b)) {", "    if (false) {")]),
+     [(SAMPLES, "    if (emcv_adaptive_reproject(p, code, a, b, s, resampled) && !resampled) {",
+       "    s = emcv_adaptive_init();\n    if (false) {")]),
     ("no 3x3 pooling", "samples",
      [(SAMPLES, "    for (int dy = -1; dy <= 1; ++dy) {", "    for (int dy = 0; dy < 0; ++dy) {")]),
     ("budget: the workgroup histogram only (no flush to the frame's, no last-workgroup solve)", "samples",
