@@ -23,6 +23,15 @@ layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_PREV_DEPTH)) uniform sampler2D prev
 layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_PREV_NORMAL)) uniform sampler2D prev_normal;
 layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_PREV_MATERIAL)) uniform usampler2D prev_material;
 
+/// Last frame's second history texel at q: cv's means; spvg and cv-notex keep one texel and fetch nothing here.
+vec4 emcv_adaptive_previous_b(ivec2 q) {
+#if defined(EMCV_ADAPTIVE_CV)
+    return texelFetch(history_prev_b, q, 0);
+#else
+    return vec4(0.0f);
+#endif
+}
+
 /// Whether last frame's texel q shows the surface pixel p shows now (emcv_history_reusable; false off screen).
 bool emcv_adaptive_same_surface(ivec2 q, uint material, float expected_prev_depth, vec3 normal) {
     if (!emcv_render_on_screen(q)) return false;
@@ -50,7 +59,7 @@ bool emcv_adaptive_reproject(ivec2 p, uint material, out vec4 a, out vec4 b, out
     vec3 normal = texelFetch(gbuffer_normal, p, 0).xyz;
     if (!emcv_adaptive_same_surface(q, material, expected_prev_depth, normal)) return false;
     a = texelFetch(history_prev_a, q, 0);
-    b = texelFetch(history_prev_b, q, 0);
+    b = emcv_adaptive_previous_b(q);
     if (!emcv_adaptive_decode(a, b, s)) return false;
     vec2 x = previous - 0.5f;  // in texel-centre coordinates
     ivec2 base = ivec2(floor(x));
@@ -64,7 +73,7 @@ bool emcv_adaptive_reproject(ivec2 p, uint material, out vec4 a, out vec4 b, out
         ivec2 r = base + o;
         if (w == 0.0f || !emcv_adaptive_same_surface(r, material, expected_prev_depth, normal)) continue;
         EmcvAdaptiveState neighbour;
-        if (!emcv_adaptive_decode(texelFetch(history_prev_a, r, 0), texelFetch(history_prev_b, r, 0), neighbour) ||
+        if (!emcv_adaptive_decode(texelFetch(history_prev_a, r, 0), emcv_adaptive_previous_b(r), neighbour) ||
             neighbour.count < 1u)
             continue;
         emcv_adaptive_blend_add(blend, w, neighbour);
