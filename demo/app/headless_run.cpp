@@ -213,7 +213,7 @@ run_result run_headless(const scene& s, const options& o, int frames, timing clo
     if (o.out) {
         write_file_atomically(*o.out / "metrics.csv", metrics_csv(result.rows));
         write_file_atomically(*o.out / "metrics.json", metrics_json(result.rows, sampling_mode_of(o.defines).text(), timing_name(clock),
-                                                                          resolve_name(ro.resolve)));
+                                                                          resolve_label(ro.resolve, ro.jitter)));
     }
     return result;
 }

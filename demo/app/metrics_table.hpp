@@ -50,7 +50,7 @@ std::string metrics_csv(const std::vector<metrics_row>& rows);
 /// JSON text: {"columns": [...], "rows": [{column: value, ..., "passes": [{"name", "ms"}, ...]}, ...]},
 /// "sampling" (the adaptive methods' mode, e.g. "budget 8 spp" or "target variance 0.0001") and "timing" (the
 /// clock of the times: "gpu" or "wall") when given. JSON has no infinity: +inf and undefined values are null
-/// (the reference's PSNR against itself; see docs/demo.md). "resolve" ("taa" or "none") when given.
+/// (the reference's PSNR against itself; see docs/demo.md). "resolve" ("taa", "taa+jitter" or "none") when given.
 std::string metrics_json(const std::vector<metrics_row>& rows, const std::string& sampling = {},
                          const std::string& timing = {}, const std::string& resolve = {});
 

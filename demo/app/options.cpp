@@ -106,6 +106,7 @@ options parse_options(const std::vector<std::string>& args) {
         else if (flag == "--no-frames") no_value(o.no_frames);
         else if (flag == "--window") no_value(o.window);
         else if (flag == "--approximate-cdf") no_value(o.approximate_cdf);
+        else if (flag == "--jitter") no_value(o.jitter);
         else if (flag == "--list-scenes") no_value(o.list_scenes);
         else if (flag == "--print-passes") no_value(o.print_passes);
         else if (flag == "--list-methods") no_value(o.list_methods);
@@ -182,6 +183,11 @@ options parse_options(const std::vector<std::string>& args) {
     if (o.no_frames && !o.out) throw usage_error("--no-frames: needs --out (it only leaves out the frames)");
     if (o.no_frames && o.exr) throw usage_error("--no-frames: cannot be combined with --exr");
     if (o.window && o.out) throw usage_error("--window: cannot be combined with --out (the window writes nothing)");
+    try {
+        check_jitter_flag(o.jitter, o.resolve);
+    } catch (const resolve_error& e) {
+        throw usage_error(e.what());
+    }
     try {
         check_tunables(o.defines);
     } catch (const tunable_error& e) {

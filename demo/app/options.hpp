@@ -34,6 +34,7 @@ struct options {
     bool approximate_cdf = false;              ///< --approximate-cdf: SPVG's inverse-CDF fit for burley-N
     timing_request timing = timing_request::automatic;  ///< --timing auto|wall|gpu: the clock of pass times
     resolve_mode resolve = resolve_mode::taa;  ///< --resolve none|taa: the temporal resolve after the composite
+    bool jitter = false;                       ///< --jitter: sub-pixel camera jitter for the resolve
     /// --define NAME=VALUE (repeatable): port tunables, validated (render/tunables.hpp), later ones win.
     std::vector<std::pair<std::string, std::string>> defines;
     bool list_methods = false;                 ///< --list-methods: the method table, one name per line

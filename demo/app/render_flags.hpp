@@ -7,7 +7,7 @@
 
 namespace emcv::demo::app {
 
-/// `Options` is a parsed command line with width, height, seed, approximate_cdf, defines and resolve.
+/// `Options` is a parsed command line with width, height, seed, approximate_cdf, defines, resolve and jitter.
 template <class Options>
 render_options make_render_options(const Options& o, timing clock) {
     render_options ro;
@@ -18,6 +18,7 @@ render_options make_render_options(const Options& o, timing clock) {
     ro.defines = o.defines;
     ro.timing_mode = clock;
     ro.resolve = o.resolve;
+    ro.jitter = o.jitter;
     return ro;
 }
 

@@ -18,6 +18,8 @@ void frame_constants::upload(const gpu_resources& r, const scene& s, const metho
     frame_.proj = v.proj;
     frame_.view_proj = v.view_proj;
     frame_.prev_view_proj = has_previous_ ? prev_view_proj_ : v.view_proj;
+    const glm::vec2 prev_jitter = has_previous_ ? prev_jitter_ : v.jitter;
+    frame_.jitter = glm::vec4(v.jitter, prev_jitter);
     frame_.inv_view = glm::inverse(v.view);
     frame_.camera_position = glm::vec4(v.position, s.mm_per_unit);
     frame_.viewport = glm::vec4(width, height, 1.0f / width, 1.0f / height);
@@ -28,6 +30,7 @@ void frame_constants::upload(const gpu_resources& r, const scene& s, const metho
     if (sss_shown) flags |= EMCV_RENDER_FLAG_SSS_RAN;
     if (o.approximate_inverse_cdf) flags |= EMCV_RENDER_FLAG_APPROXIMATE_CDF;
     if (sss_passes) flags |= EMCV_RENDER_FLAG_SSS_TILES;
+    if (v.jittered) flags |= EMCV_RENDER_FLAG_JITTER;
     frame_.counters = glm::uvec4(static_cast<std::uint32_t>(frame), o.seed, static_cast<std::uint32_t>(s.lights.size()), flags);
     // The burley pass takes the method's fixed count; an adaptive method's own burley program (built with its
     // EMCV_ADAPTIVE_* define, adaptive::history) takes N per pixel from the adaptive-samples pass instead.

@@ -26,6 +26,7 @@ public:
     /// The next frame's motion vectors start from the camera of the frame uploaded last.
     void end_frame(const view_matrices& v) {
         prev_view_proj_ = v.view_proj;
+        prev_jitter_ = v.jitter;
         has_previous_ = true;
     }
 
@@ -33,6 +34,7 @@ private:
     gpu::frame_block frame_{};
     std::vector<gpu::light_block> lights_;
     glm::mat4 prev_view_proj_{1.0f};
+    glm::vec2 prev_jitter_{0.0f};
     bool has_previous_ = false;
 };
 

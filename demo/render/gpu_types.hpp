@@ -15,7 +15,7 @@ using pass_block = EmcvPassBlock;
 using stats_block = EmcvStatsBlock;
 
 // vec4-aligned members only: the GPU layouts have no padding the C++ layout lacks.
-static_assert(sizeof(frame_block) == 5 * 64 + 7 * 16, "frame_block: std140 size");
+static_assert(sizeof(frame_block) == 5 * 64 + 8 * 16, "frame_block: std140 size");
 static_assert(sizeof(light_block) == 128, "light_block: std430 size");
 static_assert(sizeof(material_block) == 64, "material_block: std430 size");
 static_assert(sizeof(object_block) == 144, "object_block: std430 size");

@@ -39,8 +39,9 @@ std::vector<std::size_t> shadow_casters(const scene& s) {
     return out;
 }
 
-frame_planner::frame_planner(const scene& s, const method& m, int width, int height, resolve_mode resolve)
-    : s_(&s), m_(m), width_(width), height_(height), resolve_(resolve), casters_(shadow_casters(s)) {
+frame_planner::frame_planner(const scene& s, const method& m, int width, int height, resolve_mode resolve, bool jitter)
+    : s_(&s), m_(m), width_(width), height_(height), resolve_(resolve),
+      jitter_(jitter && resolve == resolve_mode::taa && m.type != method::kind::reference), casters_(shadow_casters(s)) {
     for (const object& o : s.objects)
         if (s.materials.at(static_cast<std::size_t>(o.material)).scatters()) sss_bounds_.push_back(object_bounds(s, o));
     passes_.reserve(casters_.size() + 8);
@@ -51,6 +52,7 @@ frame_planner::frame_planner(const scene& s, const method& m, int width, int hei
 const std::vector<planned_pass>& frame_planner::plan(int frame, const std::vector<float>& light_scale) {
     const scene& s = *s_;
     view_ = camera_matrices(s.view, frame, width_, height_);
+    if (jitter_) view_ = jittered(view_, taa_jitter(frame), width_, height_);
     const view_matrices& v = view_;
     const bool visible = m_.scatters() && std::any_of(sss_bounds_.begin(), sss_bounds_.end(), [&](const bounding_sphere& b) {
                              return sphere_in_frustum(v.view_proj, b);

@@ -67,7 +67,9 @@ class frame_planner {
 public:
     /// The passes do not depend on the sampling mode: a budget is solved inside the adaptive samples pass.
     /// `resolve`: whether a frame ends with the temporal resolve (not for the reference).
-    frame_planner(const scene& s, const method& m, int width, int height, resolve_mode resolve);
+    /// `jitter`: the camera moves by taa_jitter(frame) under resolve taa (render_options::jitter; never the
+    /// reference's).
+    frame_planner(const scene& s, const method& m, int width, int height, resolve_mode resolve, bool jitter = false);
 
     /// The passes of `frame`; `light_scale` multiplies each light's intensity (the window's toggles), empty
     /// for 1 everywhere.
@@ -88,6 +90,7 @@ private:
     method m_;
     int width_, height_;
     resolve_mode resolve_;
+    bool jitter_;
     std::vector<bounding_sphere> sss_bounds_;
     std::vector<std::size_t> casters_;
     std::vector<planned_pass> passes_;

@@ -28,6 +28,9 @@ struct render_options {
     /// The temporal resolve after the composite (resolve.hpp). The renderer's default is the raw frame; the
     /// command lines default to taa, what an engine shows.
     resolve_mode resolve = resolve_mode::none;
+    /// The camera moves by taa_jitter(frame) (view.hpp) every frame so that the resolve accumulates an
+    /// anti-aliased image; only under resolve taa, never for the reference.
+    bool jitter = false;
     /// Tunables of the port headers (`--define NAME=VALUE`, validated by demo/render/tunables.hpp), passed
     /// to every shader as `#define NAME VALUE`.
     std::vector<std::pair<std::string, std::string>> defines;

@@ -27,7 +27,11 @@ public:
 resolve_mode parse_resolve_flag(std::string_view value);
 /// "none" or "taa" (metrics.json, emcv-eval's rows, the summary).
 const char* resolve_name(resolve_mode r);
-/// The --resolve lines of a --help text (22-column layout).
+/// resolve_name, "taa+jitter" under taa with the camera's jitter (metrics.json's "resolve", emcv-eval's column).
+std::string resolve_label(resolve_mode r, bool jitter);
+/// The --resolve lines of a --help text (22-column layout), --jitter's included.
 std::string resolve_flag_help();
+/// --jitter needs the resolve: throws resolve_error naming both flags when `jitter` is set without taa.
+void check_jitter_flag(bool jitter, resolve_mode r);
 
 }  // namespace emcv::demo

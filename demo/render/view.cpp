@@ -21,6 +21,30 @@ view_matrices camera_matrices(const camera& c, int frame, int width, int height)
     return v;
 }
 
+namespace {
+/// The radical inverse of i in `base` (the Halton sequence's point i).
+float radical_inverse(int i, int base) {
+    float result = 0.0f, scale = 1.0f / float(base);
+    for (; i > 0; i /= base, scale /= float(base)) result += float(i % base) * scale;
+    return result;
+}
+}  // namespace
+
+glm::vec2 taa_jitter(int frame) {
+    const int index = (frame % 8 + 8) % 8 + 1;
+    return {radical_inverse(index, 2) - 0.5f, radical_inverse(index, 3) - 0.5f};
+}
+
+view_matrices jittered(view_matrices v, glm::vec2 jitter, int width, int height) {
+    // clip.x gains -2 j / width * z_view, and clip.w = -z_view: ndc.x moves by +2 j / width, j pixels.
+    v.proj[2][0] -= 2.0f * jitter.x / float(width);
+    v.proj[2][1] -= 2.0f * jitter.y / float(height);
+    v.view_proj = v.proj * v.view;
+    v.jitter = jitter;
+    v.jittered = true;
+    return v;
+}
+
 bounding_sphere object_bounds(const scene& s, const object& o) {
     const mesh& m = s.meshes.at(static_cast<std::size_t>(o.mesh));
     if (m.vertices.empty()) return {glm::vec3(o.model[3]), 0.0f};

@@ -14,7 +14,19 @@ struct view_matrices {
     glm::mat4 view_proj{1.0f};
     glm::vec3 position{0.0f};
     glm::vec3 target{0.0f};
+    /// The sub-pixel offset `proj` moves the image by, in pixels (taa_jitter; 0 without jitter).
+    glm::vec2 jitter{0.0f};
+    bool jittered = false;  ///< made by jittered()
 };
+
+/// The temporal resolve's camera jitter at `frame`, in pixels, each component in (-0.5, 0.5): the Halton (2, 3)
+/// points 1-8 (`frame mod 8` + 1) less 0.5, as TAA implementations jitter, so that over 8 frames a still pixel's
+/// samples cover its area and the resolve's history accumulates its anti-aliased value.
+glm::vec2 taa_jitter(int frame);
+
+/// `v` with its projection offset so that the image moves by `jitter` pixels (a translation in clip space: the
+/// depth and the scale are unchanged), view_proj updated.
+view_matrices jittered(view_matrices v, glm::vec2 jitter, int width, int height);
 
 /// The camera at `frame` for a width x height viewport (OpenGL clip space, right-handed, -z forward).
 view_matrices camera_matrices(const camera& c, int frame, int width, int height);

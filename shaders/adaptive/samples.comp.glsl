@@ -53,7 +53,7 @@ bool emcv_adaptive_reproject(ivec2 p, uint material, out vec4 a, out vec4 b, out
     b = vec4(0.0f);
     s = emcv_adaptive_init();
     resampled = false;
-    vec2 previous = emcv_render_previous_position(p);
+    vec2 previous = emcv_render_previous_sample_position(p);
     ivec2 q = ivec2(floor(previous));
     float expected_prev_depth = emcv_render_previous_depth(p, emcv_render_depth(p));
     vec3 normal = texelFetch(gbuffer_normal, p, 0).xyz;

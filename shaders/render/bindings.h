@@ -60,6 +60,7 @@
 #define EMCV_RENDER_FLAG_SSS_RAN 1u         // composite reads the scattered diffuse at SSS pixels
 #define EMCV_RENDER_FLAG_APPROXIMATE_CDF 2u // Burley radii from SPVG's approximation
 #define EMCV_RENDER_FLAG_SSS_TILES 4u       // SSS passes follow: the lighting pass lists the SSS tiles
+#define EMCV_RENDER_FLAG_JITTER 8u          // the camera jitters (--jitter): the resolve's history test is the neighbourhood's
 
 #define EMCV_RENDER_MAX_SEPARABLE_TAPS 25
 

@@ -29,6 +29,7 @@ struct EmcvFrameBlock {
     vec4 ambient;          // linear rgb irradiance, w: tonemap (0 ACES fitted, 1 Reinhard)
     uvec4 counters;        // frame, seed, light count, flags (EMCV_RENDER_FLAG_*)
     ivec4 sss;             // fixed samples per SSS pixel (0 for the adaptive methods: their burley program takes N per pixel), unused, material count, unused
+    vec4 jitter;           // xy: this frame's sub-pixel camera offset in pixels (0 without --jitter), zw: the previous frame's
 };
 
 /// One light at this frame (storage buffer EMCV_RENDER_LIGHTS).

@@ -28,7 +28,8 @@ bool emcv_render_scatters(uint material_code) {
 
 /// Linear view depth z of a pixel centre -> world position (the G-buffer stores z, > 0 in front).
 vec3 emcv_render_world_position(ivec2 pixel, float z) {
-    vec2 ndc = (vec2(pixel) + 0.5f) * frame.viewport.zw * 2.0f - 1.0f;
+    // The pixel's centre less the camera's jitter: where the surface it shows lies in the unjittered view.
+    vec2 ndc = (vec2(pixel) + 0.5f - frame.jitter.xy) * frame.viewport.zw * 2.0f - 1.0f;
     vec4 view_position = vec4(ndc.x * z / frame.projection.x, ndc.y * z / frame.projection.y, -z, 1.0f);
     return (frame.inv_view * view_position).xyz;
 }

@@ -32,5 +32,7 @@ void main() {
     out_material = v_material + 1u;
     vec2 ndc = v_clip.xy / v_clip.w;
     vec2 prev_ndc = v_prev_clip.xy / v_prev_clip.w;
-    out_motion = (ndc - prev_ndc) * 0.5f * frame.viewport.xy;
+    // Less the change of the camera's jitter: the motion of the surface in the unjittered view, 0 for a still
+    // camera (what the resolve's history of the pixel reprojects with).
+    out_motion = (ndc - prev_ndc) * 0.5f * frame.viewport.xy - (frame.jitter.xy - frame.jitter.zw);
 }

@@ -30,6 +30,12 @@ float emcv_render_scattering_depth(ivec2 q) {
 /// Where p's centre was in the previous frame, in pixels (the motion target holds current - previous): what the
 /// passes that keep a history (the adaptive samples pass, the resolve) reproject from.
 vec2 emcv_render_previous_position(ivec2 p) { return vec2(p) + 0.5f - texelFetch(gbuffer_motion, p, 0).xy; }
+/// Where the surface point that p's centre shows this frame (the camera's jitter included) was shown in the
+/// previous frame, in pixels: the position of the adaptive history, which holds statistics of that point. Without
+/// jitter it is emcv_render_previous_position.
+vec2 emcv_render_previous_sample_position(ivec2 p) {
+    return emcv_render_previous_position(p) - (frame.jitter.xy - frame.jitter.zw);
+}
 /// The view depth that the surface seen at p (view depth z) had in the previous frame: its clip w under the
 /// previous camera (objects do not move in the scene model). A history texel whose stored depth differs from it
 /// shows another surface.

@@ -33,8 +33,36 @@ vec3 display_ycocg(ivec2 q) {
     return emcv_rgb_to_ycocg(emcv_display_encode(linear * frame.background.w, int(frame.ambient.w)));
 }
 
+/// Under the camera's jitter (EMCV_RENDER_FLAG_JITTER) a pixel on a silhouette shows the object on some frames
+/// and what lies behind it on others, and its history rightly holds their mix: there a history texel is of this
+/// pixel when its stored depth is that of any surface the pixel's 3x3 neighbourhood shows now (each at its
+/// previous depth; the background, depth 0, matches the background), so that only a surface the neighbourhood
+/// no longer shows (a disocclusion) restarts it. Without jitter a texel must show this pixel's own surface.
+shared float tile_previous_depth[APRON_SIDE * APRON_SIDE];
+
+bool jitters() { return (frame.counters.w & EMCV_RENDER_FLAG_JITTER) != 0u; }
+
+/// The depth the surface at q had in the previous frame (0 for the background and off screen).
+float previous_depth_at(ivec2 q) {
+    if (!emcv_render_on_screen(q)) return 0.0f;
+    float z = emcv_render_depth(q);
+    return z > 0.0f ? emcv_render_previous_depth(q, z) : 0.0f;
+}
+
+/// Whether a history texel of stored depth `history_depth` shows a surface pixel p (tile position `local`) shows.
+bool history_of_pixel(float history_depth, float expected_depth, ivec2 local) {
+    if (!jitters()) return emcv_resolve_same_surface(history_depth, expected_depth);
+    for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+            float z = tile_previous_depth[(local.x + dx) + (local.y + dy) * APRON_SIDE];
+            if (z > 0.0f ? emcv_resolve_same_surface(history_depth, z) : history_depth == 0.0f) return true;
+        }
+    }
+    return false;
+}
+
 /// Last frame's resolved value (YCoCg) at this surface's previous position, or false where none shows it.
-bool reprojected_history(ivec2 p, float depth, out vec3 history) {
+bool reprojected_history(ivec2 p, float depth, ivec2 local, out vec3 history) {
     history = vec3(0.0f);
     float expected_depth = emcv_render_previous_depth(p, depth);
     // The previous position of p's centre, in texel-centre coordinates (between four texel centres).
@@ -49,7 +77,7 @@ bool reprojected_history(ivec2 p, float depth, out vec3 history) {
             ivec2 q = base + ivec2(i - 1, j - 1);
             if (w == 0.0f || !emcv_render_on_screen(q)) continue;
             vec4 texel = texelFetch(history_previous, q, 0);
-            if (!emcv_resolve_same_surface(texel.w, expected_depth)) continue;
+            if (!history_of_pixel(texel.w, expected_depth, local)) continue;
             history += w * texel.xyz;
             weight_sum += w;
         }
@@ -63,8 +91,11 @@ bool reprojected_history(ivec2 p, float depth, out vec3 history) {
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     ivec2 origin = ivec2(gl_WorkGroupID.xy) * EMCV_RENDER_TILE_SIZE - 1;
-    for (uint i = gl_LocalInvocationIndex; i < uint(APRON_SIDE * APRON_SIDE); i += uint(EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE))
-        tile_ycocg[i] = display_ycocg(origin + ivec2(int(i) % APRON_SIDE, int(i) / APRON_SIDE));
+    for (uint i = gl_LocalInvocationIndex; i < uint(APRON_SIDE * APRON_SIDE); i += uint(EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE)) {
+        ivec2 q = origin + ivec2(int(i) % APRON_SIDE, int(i) / APRON_SIDE);
+        tile_ycocg[i] = display_ycocg(q);
+        if (jitters()) tile_previous_depth[i] = previous_depth_at(q);
+    }
     barrier();
     if (!emcv_render_on_screen(p)) return;
 
@@ -73,7 +104,9 @@ void main() {
     float depth = emcv_render_depth(p);
     vec3 resolved = current;
     vec3 history;
-    if (depth > 0.0f && reprojected_history(p, depth, history)) {
+    // The background is blended only under jitter (its silhouette pixels mix with the object's); without
+    // jitter it does not change and is shown as it is.
+    if ((depth > 0.0f || jitters()) && reprojected_history(p, depth, local, history)) {
         vec3 sum = vec3(0.0f), sum_squares = vec3(0.0f), filtered = vec3(0.0f);
         for (int dy = -1; dy <= 1; ++dy) {
             for (int dx = -1; dx <= 1; ++dx) {

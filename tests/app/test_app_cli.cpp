@@ -345,7 +345,7 @@ TEST_CASE("emcv-demo --timing gpu: each frame's times arrive late and land on th
     CHECK(bad.err == "emcv-demo: --timing: expected auto, wall or gpu, got 'fast'\n");
 }
 
-TEST_CASE("emcv-demo --resolve: taa records the resolve pass and writes the shown frames, none neither", "[app][cli][gl]") {
+TEST_CASE("emcv-demo --resolve: taa records the resolve pass and writes the shown frames, none neither; --jitter needs taa", "[app][cli][gl]") {
     for (const char* mode : {"taa", "none"}) {
         INFO(mode);
         const bool taa = std::string(mode) == "taa";
@@ -372,6 +372,20 @@ TEST_CASE("emcv-demo --resolve: taa records the resolve pass and writes the show
     const emcv_test::command_result bad = run_demo("--method burley-4 --resolve fxaa");
     CHECK(bad.exit_code == 2);
     CHECK(bad.err == "emcv-demo: --resolve: expected none or taa, got 'fxaa'\n");
+    // --jitter: only with the resolve, and named in metrics.json's "resolve"
+    const fs::path out = scratch_dir("resolve-jitter") / "out";
+    const emcv_test::command_result r = run_demo("--scene '" + data_dir + "/tiny.json' --size 32x32 --frames 2 "
+                                                 "--method burley-4 --jitter --out '" + out.string() + "'");
+    if (emcv_test::no_display(r)) SKIP("no OpenGL display: " << r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(nlohmann::json::parse(emcv_test::read_file(out / "metrics.json"))["resolve"] == "taa+jitter");
+    const fs::path none_out = scratch_dir("resolve-jitter-none") / "out";
+    const emcv_test::command_result no_resolve = run_demo("--method burley-4 --resolve none --jitter --out '" +
+                                                          none_out.string() + "'");
+    CHECK(no_resolve.exit_code == 2);
+    CHECK(no_resolve.err == "emcv-demo: --jitter: needs --resolve taa (the jitter is what the resolve accumulates; "
+                            "the raw frame alone would only move)\n");
+    CHECK_FALSE(fs::exists(none_out));
 }
 
 TEST_CASE("the metrics-only flag (--no-frames) writes metrics.csv and metrics.json and no frame", "[app][cli][gl]") {

@@ -129,7 +129,7 @@ TEST_CASE("emcv-eval --timing gpu: every frame's row once, frame-major, once its
     CHECK(bad.out.empty());
 }
 
-TEST_CASE("emcv-eval --resolve none: no resolve in the rows; the reference never resolves; a bad value", "[app][eval][gl]") {
+TEST_CASE("emcv-eval --resolve none: no resolve in the rows; the reference never resolves; a bad value; --jitter", "[app][eval][gl]") {
     for (const row& x : run_eval("--scene '" + data_dir + "/switch.json' --size 48x48 --method burley-4,reference "
                                  "--seed 3 --resolve none"))
         CHECK(x.resolve == "none");
@@ -141,6 +141,15 @@ TEST_CASE("emcv-eval --resolve none: no resolve in the rows; the reference never
     CHECK(bad.exit_code == 2);
     CHECK(bad.err == "emcv-eval: --resolve: expected none or taa, got 'yes'\n");
     CHECK(bad.out.empty());
+    for (const row& x : run_eval("--scene '" + data_dir + "/switch.json' --size 48x48 --frames 2 --method "
+                                 "burley-4,reference --seed 3 --jitter"))
+        CHECK(x.resolve == (x.method == "reference" ? "none" : "taa+jitter"));
+    const emcv_test::command_result no_resolve = emcv_test::run_command(
+        "'" + std::string(EMCV_EVAL_EXE) + "' --method burley-4 --resolve none --jitter");
+    CHECK(no_resolve.exit_code == 2);
+    CHECK(no_resolve.err == "emcv-eval: --jitter: needs --resolve taa (the jitter is what the resolve accumulates; "
+                            "the raw frame alone would only move)\n");
+    CHECK(no_resolve.out.empty());
 }
 
 TEST_CASE("emcv-eval: the adaptive rows' mean and max of N equal the dumped heatmaps'", "[app][eval][gl]") {

@@ -36,7 +36,7 @@ std::string usage_text() {
     return "usage: emcv-eval --method M[,M...] [--scene FILE|NAME] [--size WxH] [--frames N] [--sss-scale K]\n"
            "                 [--seed S] [--heatmaps F[,F...] --heatmap-dir DIR] [--approximate-cdf]\n"
            "                 [--spp-budget B | --target-variance V] [--timing auto|wall|gpu]\n"
-           "                 [--resolve none|taa] [--define NAME=VALUE ...]\n"
+           "                 [--resolve none|taa] [--jitter] [--define NAME=VALUE ...]\n"
            "Renders the methods side by side, frame by frame (no reference), and prints one CSV row per frame\n"
            "and method: scene,width,height,sss_scale,method,frame,sss_ms,frame_ms,mean_spp,max_spp,sss_pixels,lights,\n"
            "sampling,timing,resolve (lights: name=intensity;... of the scene's light curves at the frame;\n"
@@ -62,6 +62,10 @@ options parse_options(const std::vector<std::string>& args) {
         }
         if (flag == "--approximate-cdf") {
             o.approximate_cdf = true;
+            continue;
+        }
+        if (flag == "--jitter") {
+            o.jitter = true;
             continue;
         }
         if (flag.rfind("--", 0) != 0) throw usage_error("unexpected argument '" + flag + "'");
@@ -128,6 +132,11 @@ options parse_options(const std::vector<std::string>& args) {
     if (o.help) return o;
     if (o.methods.empty()) throw usage_error("--method: required");
     if (!o.heatmap_frames.empty() && o.heatmap_dir.empty()) throw usage_error("--heatmaps needs --heatmap-dir DIR");
+    try {
+        demo::check_jitter_flag(o.jitter, o.resolve);
+    } catch (const demo::resolve_error& e) {
+        throw usage_error(e.what());
+    }
     try {
         demo::check_tunables(o.defines);
     } catch (const demo::tunable_error& e) {

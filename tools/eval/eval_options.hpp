@@ -29,6 +29,7 @@ struct options {
     bool approximate_cdf = false;     ///< --approximate-cdf: SPVG's inverse-CDF fit for the Burley radii
     demo::timing_request timing = demo::timing_request::automatic;  ///< --timing auto|wall|gpu
     demo::resolve_mode resolve = demo::resolve_mode::taa;  ///< --resolve none|taa (its pass is in frame_ms)
+    bool jitter = false;              ///< --jitter: sub-pixel camera jitter for the resolve (needs taa)
     /// --define NAME=VALUE (repeatable): port tunables, validated (render/tunables.hpp), later ones win.
     std::vector<std::pair<std::string, std::string>> defines;
     bool help = false;

@@ -50,7 +50,7 @@ struct eval_row {
     int max_spp = 0;
     std::size_t sss_pixels = 0;
     std::string lights;
-    const char* resolve = "none";  ///< the temporal resolve this method's frame ran (the reference never does)
+    std::string resolve = "none";  ///< the temporal resolve this method's frame ran (the reference never does)
     bool timed = false;
 };
 
@@ -90,7 +90,7 @@ int run(const eval::options& o) {
             std::printf("%s,%d,%d,%g,%s,%d,%.4f,%.4f,%.3f,%d,%zu,%s,%s,%s,%s\n", s.name.c_str(), o.width, o.height,
                         static_cast<double>(o.sss_scale), r.method.c_str(), r.frame, r.sss_ms, r.frame_ms, r.mean_spp,
                         r.max_spp, r.sss_pixels, r.lights.c_str(), sampling.c_str(), demo::timing_name(clock),
-                        r.resolve);
+                        r.resolve.c_str());
         }
     };
     for (int frame = 0; frame < frames; ++frame) {
@@ -103,7 +103,7 @@ int run(const eval::options& o) {
             const std::string name = o.methods[i].name();
             const bool resolved = o.resolve == demo::resolve_mode::taa && o.methods[i].type != demo::method::kind::reference;
             rows.push_back({name, frame, 0.0, 0.0, st.mean_spp, st.max_spp, st.sss_pixels, lights,
-                            demo::resolve_name(resolved ? o.resolve : demo::resolve_mode::none), false});
+                            demo::resolve_label(resolved ? o.resolve : demo::resolve_mode::none, o.jitter), false});
             if (dump) {
                 const std::string stem = name + ".f" + std::to_string(frame);
                 write_csv(o.heatmap_dir / (stem + ".samples.csv"), renderers[i].sample_counts());
