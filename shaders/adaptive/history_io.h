@@ -60,20 +60,7 @@ void emcv_adaptive_store_raw(ivec2 p, vec4 a, vec4 b) {
 }
 
 /// Resampling a reprojected history: adds w times a neighbour's statistics (the means and comoments, not the
-/// count) to a running blend (emcv_adaptive_blend_zero() to start).
-EmcvAdaptiveState emcv_adaptive_blend_zero() {
-#if defined(EMCV_ADAPTIVE_CV)
-    EmcvEmcm2 s = emcv_emcm2_init();
-    s.mean = vec2(0.0f);
-    s.cov = vec3(0.0f);
-#else
-    EmcvMovingStats s = emcv_moving_stats_init();
-    s.mean = 0.0f;
-    s.variance = 0.0f;
-#endif
-    return s;
-}
-
+/// count) to a running blend (a fresh state, emcv_adaptive_init(), to start: its statistics are 0).
 void emcv_adaptive_blend_add(inout EmcvAdaptiveState blend, float w, EmcvAdaptiveState s) {
 #if defined(EMCV_ADAPTIVE_CV)
     blend.mean += w * s.mean;

@@ -65,16 +65,17 @@ bool emcv_adaptive_reproject(ivec2 p, uint material, out vec4 a, out vec4 b, out
     ivec2 base = ivec2(floor(x));
     vec2 t = x - vec2(base);
     if (t == vec2(0.0f) || s.count < 1u) return true;
-    EmcvAdaptiveState blend = emcv_adaptive_blend_zero();
+    EmcvAdaptiveState blend = emcv_adaptive_init();
     float weight = 0.0f;
     for (int k = 0; k < 4; ++k) {
         ivec2 o = ivec2(k & 1, k >> 1);
         float w = (o.x == 1 ? t.x : 1.0f - t.x) * (o.y == 1 ? t.y : 1.0f - t.y);
         ivec2 r = base + o;
-        if (w == 0.0f || !emcv_adaptive_same_surface(r, material, expected_prev_depth, normal)) continue;
-        EmcvAdaptiveState neighbour;
-        if (!emcv_adaptive_decode(texelFetch(history_prev_a, r, 0), emcv_adaptive_previous_b(r), neighbour) ||
-            neighbour.count < 1u)
+        if (w == 0.0f) continue;
+        EmcvAdaptiveState neighbour = s;  // q itself: tested and decoded above
+        if (r != q && (!emcv_adaptive_same_surface(r, material, expected_prev_depth, normal) ||
+                       !emcv_adaptive_decode(texelFetch(history_prev_a, r, 0), emcv_adaptive_previous_b(r), neighbour) ||
+                       neighbour.count < 1u))
             continue;
         emcv_adaptive_blend_add(blend, w, neighbour);
         weight += w;
