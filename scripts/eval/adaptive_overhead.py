@@ -39,6 +39,8 @@ VARIANTS = [
     ("no reprojection: every history fresh (no previous G-buffer or history reads)", "samples",
      [(SAMPLES, "    if (emcv_adaptive_reproject(p, code, a, b, s, resampled) && !resampled) {",
        "    s = emcv_adaptive_init();\n    if (false) {")]),
+    ("nearest texel: the reprojected history not resampled (the same under a still camera)", "samples",
+     [(SAMPLES, "    if (t == vec2(0.0f) || s.count < 1u) return true;", "    if (true) return true;")]),
     ("no 3x3 pooling", "samples",
      [(SAMPLES, "    for (int dy = -1; dy <= 1; ++dy) {", "    for (int dy = 0; dy < 0; ++dy) {")]),
     ("budget: the workgroup histogram only (no flush to the frame's, no last-workgroup solve)", "samples",
