@@ -123,3 +123,50 @@ TEST_CASE("the variation scenes are not built-in scenes: --list-scenes keeps to 
         CHECK(std::find(names.begin(), names.end(), v.name) == names.end());
     }
 }
+
+TEST_CASE("the validation scenes are a skin close-up with light-off's lights and switch, one still, one orbiting") {
+    // demo/scenes/validation/: what differs from light-off is the material (Burley's skin), the scale (a
+    // life-size head) and the framing; what they share is the event (light-off's key light, off at frame 30).
+    const scene base = load_scene_argument("light-off");
+    const auto dir = source_dir() / "demo" / "scenes" / "validation";
+    for (const auto& [name, camera_moves] : {std::pair<std::string, bool>{"skin-close", false}, {"skin-orbit", true}}) {
+        INFO(name);
+        const scene s = load_scene(dir / (name + ".json"));
+        CHECK(s.name == name);
+        CHECK(!s.description.empty());
+        CHECK(s.frames == 60);
+        std::ifstream in(dir / (name + ".json"));
+        CHECK(nlohmann::json::parse(in).value("$schema", "") == "../scene.schema.json");
+        const auto names = builtin_scene_names();
+        CHECK(std::find(names.begin(), names.end(), name) == names.end());
+
+        CHECK(s.mm_per_unit == 250.0f);
+        REQUIRE(s.materials.size() == 1u);
+        CHECK(s.materials[0].mean_free_path_mm == glm::vec3(3.67f, 1.37f, 0.68f));
+        CHECK(s.materials[0].mean_free_path_mm != base.materials[0].mean_free_path_mm);
+        REQUIRE(s.meshes.size() == 1u);
+        CHECK(s.meshes[0].indices == base.meshes[0].indices);
+
+        REQUIRE(s.lights.size() == 2u);
+        CHECK(named(s, "fill").intensity.is_constant());
+        CHECK(named(s, "fill").intensity.at(0) == named(base, "fill").intensity.at(0));
+        CHECK(named(s, "key").casts_shadow);
+        for (int f = 0; f < s.frames; ++f) {
+            INFO("frame " << f);
+            CHECK(named(s, "key").intensity.at(f) == named(base, "key").intensity.at(f));
+        }
+
+        CHECK(s.view.is_static() == !camera_moves);
+        // Closer than light-off's camera: the head fills the image.
+        CHECK(glm::length(s.view.at(30).first - s.view.at(30).second) < 0.6f * glm::length(base.view.at(0).first - base.view.at(0).second));
+        if (camera_moves) {
+            const auto [first_eye, first_target] = s.view.at(0);
+            const auto [last_eye, last_target] = s.view.at(s.frames - 1);
+            CHECK(first_target == last_target);
+            const glm::vec2 a = glm::vec2(first_eye.x, first_eye.z) - glm::vec2(first_target.x, first_target.z);
+            const glm::vec2 b = glm::vec2(last_eye.x, last_eye.z) - glm::vec2(last_target.x, last_target.z);
+            CHECK(std::fabs(glm::degrees(std::acos(glm::dot(glm::normalize(a), glm::normalize(b)))) - 20.0f) < 0.1f);
+            CHECK(std::fabs(glm::length(a) - glm::length(b)) < 1e-3f);
+        }
+    }
+}

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """The JSON Schema describes real scene files, independently of the loader (python3-jsonschema, Draft 2020-12):
-every built-in scene, every variation scene (demo/scenes/variations/) and the worked example of docs/scenes.md
-validate; scenes broken the way the loader's
-error tests break them do not (one per class the schema can express). Exit 0 on success, 1 with the reasons.
+every built-in scene, every variation and validation scene (demo/scenes/variations/, validation/) and the worked
+example of docs/scenes.md validate; scenes broken the way the loader's error tests break them do not (one per class
+the schema can express). Exit 0 on success, 1 with the reasons.
 
     /usr/bin/python3 tests/scene/validate_with_schema.py ROOT
 """
@@ -34,18 +34,19 @@ def main(root):
     scenes["docs/scenes.md example"] = json.loads(doc[start:doc.index("```", start)])
     if len(scenes) < 9:
         failures.append("expected 8 built-in scenes and the example, found %d" % len(scenes))
-    # The variation scenes sit one folder down so that --list-scenes keeps to the eight built-in ones; they
-    # declare the same schema and must validate just the same.
-    variations = sorted(glob.glob(os.path.join(root, "demo", "scenes", "variations", "*.json")))
-    if len(variations) < 8:
-        failures.append("expected 8 variation scenes in demo/scenes/variations, found %d" % len(variations))
-    for path in variations:
-        with open(path) as f:
-            scene = json.load(f)
-        name = "variations/" + os.path.basename(path)
-        if scene.get("$schema") != "../scene.schema.json":
-            failures.append("%s: $schema is not ../scene.schema.json" % name)
-        scenes[name] = scene
+    # The variation and validation scenes sit one folder down so that --list-scenes keeps to the eight built-in
+    # ones; they declare the same schema and must validate just the same.
+    for folder, least in (("variations", 8), ("validation", 2)):
+        paths = sorted(glob.glob(os.path.join(root, "demo", "scenes", folder, "*.json")))
+        if len(paths) < least:
+            failures.append("expected %d scenes in demo/scenes/%s, found %d" % (least, folder, len(paths)))
+        for path in paths:
+            with open(path) as f:
+                scene = json.load(f)
+            name = folder + "/" + os.path.basename(path)
+            if scene.get("$schema") != "../scene.schema.json":
+                failures.append("%s: $schema is not ../scene.schema.json" % name)
+            scenes[name] = scene
     for name, scene in scenes.items():
         for error in validator.iter_errors(scene):
             failures.append("%s: %s: %s" % (name, "/" + "/".join(str(p) for p in error.absolute_path), error.message))
