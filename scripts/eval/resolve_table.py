@@ -11,6 +11,7 @@ markdown table per scene from its metrics.csv:
 
     /usr/bin/python3 scripts/eval/resolve_table.py [--build build] [--size 96x96] [--budget 8]
                                                    [--scenes static,light-off] [--methods M,...]
+                                                   [--define NAME=VALUE ...]
 """
 import argparse
 import csv
@@ -45,9 +46,11 @@ def lag(psnr_by_frame, change):
     return WINDOW
 
 
-def run_scene(build, scene, methods, size, budget, out):
+def run_scene(build, scene, methods, size, budget, out, defines=()):
     cmd = [os.path.join(build, "bin", "emcv-demo"), "--scene", scene, "--method", ",".join(methods),
            "--spp-budget", str(budget), "--size", size, "--resolve", "taa", "--no-frames", "--out", out]
+    for d in defines:
+        cmd += ["--define", d]
     done = subprocess.run(cmd, capture_output=True, text=True)
     if done.returncode != 0:
         sys.exit("resolve_table: %s failed:\n%s" % (" ".join(cmd), done.stderr))
@@ -91,12 +94,14 @@ def main():
     p.add_argument("--budget", type=int, default=8)
     p.add_argument("--scenes", default="static,light-off")
     p.add_argument("--methods", default=None, help="default: diffuse,burley-B,separable-17,spvg,cv,cv-notex")
+    p.add_argument("--define", action="append", default=[], metavar="NAME=VALUE",
+                   help="a tunable's other value for every run (emcv-demo --define; repeatable)")
     a = p.parse_args()
     methods = (a.methods.split(",") if a.methods else
                ["diffuse", "burley-%d" % a.budget, "separable-17", "spvg", "cv", "cv-notex"])
     with tempfile.TemporaryDirectory() as tmp:
         for scene in a.scenes.split(","):
-            rows, change = run_scene(a.build, scene, methods, a.size, a.budget, os.path.join(tmp, scene))
+            rows, change = run_scene(a.build, scene, methods, a.size, a.budget, os.path.join(tmp, scene), a.define)
             print(table(scene, rows, change, methods))
             print()
 

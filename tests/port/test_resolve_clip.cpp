@@ -7,7 +7,9 @@
 #include <catch2/catch_test_macros.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <random>
+#include <vector>
 
 #include <emcv/port/resolve.h>
 
@@ -108,4 +110,154 @@ TEST_CASE("resolve clip target filter: the 3x3 weights sum to 1, are symmetric a
     // Separable: w(dx, dy) w(0, 0) = w(dx, 0) w(0, dy).
     CHECK(port::emcv_resolve_filter_weight(1, 1) * port::emcv_resolve_filter_weight(0, 0) ==
           port::emcv_resolve_filter_weight(1, 0) * port::emcv_resolve_filter_weight(0, 1));
+}
+
+TEST_CASE("resolve noise box: the box grows to the current value -+ EMCV_RESOLVE_NOISE_SIGMAS temporal deviations, "
+          "never shrinks, and a zero variance leaves it as it was") {
+    const glm::vec3 current(0.5f, 0.1f, -0.05f);
+    const glm::vec3 box_lo(0.45f, 0.0f, -0.2f), box_hi(0.52f, 0.3f, 0.3f);
+    glm::vec3 lo = box_lo, hi = box_hi;
+    port::emcv_resolve_noise_box(current, glm::vec3(0.0f), lo, hi);
+    CHECK(lo == box_lo);
+    CHECK(hi == box_hi);
+    // Deviations 0.02, 0.01 and 0.1 at 3 deviations: the first channel's box grows on both sides (0.44 < 0.45,
+    // 0.56 > 0.52), the second keeps its wider box, the third grows at the bottom only (-0.35 < -0.2; 0.25 < 0.3).
+    REQUIRE(EMCV_RESOLVE_NOISE_SIGMAS == 3.0f);
+    const glm::vec3 noise(0.02f * 0.02f, 0.01f * 0.01f, 0.1f * 0.1f);
+    port::emcv_resolve_noise_box(current, noise, lo, hi);
+    CHECK(std::fabs(lo.x - 0.44f) < 1e-6f);
+    CHECK(std::fabs(hi.x - 0.56f) < 1e-6f);
+    CHECK(lo.y == box_lo.y);
+    CHECK(hi.y == box_hi.y);
+    CHECK(std::fabs(lo.z - (-0.35f)) < 1e-6f);
+    CHECK(hi.z == box_hi.z);
+}
+
+TEST_CASE("resolve change test: the filtered luma's move against the learnt offset, beyond 3 deviations of the "
+          "filtered value's and the history's noise") {
+    // Variance 1e-4 (deviation 0.01), weight 0.1: the filtered value's variance is sum w^2 = (6/16)^2 = 9/64 of a
+    // pixel's, the history's 0.1 / 1.9 of it, so the move's deviation is 0.01 sqrt(9/64 + 1/19) = 0.004396 and
+    // the bound 3 times that, 0.013189, around the learnt offset 0.02.
+    REQUIRE(EMCV_RESOLVE_NOISE_SIGMAS == 3.0f);
+    const glm::vec4 state(1e-4f, 4e-4f, 4e-4f, 0.02f);
+    const float bound = 3.0f * 0.01f * std::sqrt(9.0f / 64.0f + 1.0f / 19.0f);
+    CHECK_FALSE(port::emcv_resolve_neighbourhood_changed(0.02f + 0.98f * bound, state, 0.1f));
+    CHECK_FALSE(port::emcv_resolve_neighbourhood_changed(0.02f - 0.98f * bound, state, 0.1f));
+    CHECK(port::emcv_resolve_neighbourhood_changed(0.02f + 1.02f * bound, state, 0.1f));
+    CHECK(port::emcv_resolve_neighbourhood_changed(0.02f - 1.02f * bound, state, 0.1f));
+    // Nothing measured yet: never a change (the neighbourhood's box decides alone).
+    CHECK_FALSE(port::emcv_resolve_neighbourhood_changed(1.0f, glm::vec4(0.0f), 0.1f));
+}
+
+TEST_CASE("resolve noise update: exponential averages of the squared move and of the luma offset, kept where the "
+          "clip moved the history, restarted at 0 where the neighbourhood changed") {
+    const glm::vec4 state(1e-4f, 4e-4f, 2e-4f, 0.01f);
+    const glm::vec3 current(0.5f, 0.2f, 0.1f), kept(0.49f, 0.23f, 0.1f);
+    const float w = 0.1f, move = 0.03f;
+    const glm::vec4 next = port::emcv_resolve_noise_update(state, current, kept, 1.0f, move, false, w);
+    const glm::vec3 d = current - kept;
+    for (int c = 0; c < 3; ++c) CHECK(std::fabs(next[c] - ((1.0f - w) * state[c] + w * d[c] * d[c])) < 1e-9f);
+    CHECK(std::fabs(next.w - (0.9f * 0.01f + 0.1f * move)) < 1e-8f);
+    // A new state takes the offset as it is.
+    CHECK(port::emcv_resolve_noise_update(glm::vec4(0.0f), current, kept, 1.0f, move, false, w).w == move);
+    CHECK(port::emcv_resolve_noise_update(state, current, kept, 0.999f, move, false, w) == state);
+    CHECK(port::emcv_resolve_noise_update(state, current, kept, 0.0f, move, false, w) == state);
+    CHECK(port::emcv_resolve_noise_update(state, current, kept, 1.0f, move, true, w) == glm::vec4(0.0f));
+}
+
+namespace {
+
+struct ridge_run {
+    std::vector<double> error;     ///< per frame: the resolved value's squared error against the truth (channel mean)
+    std::vector<bool> restarted;   ///< per frame: the noise state restarted (a change found, or a clip)
+};
+
+/// One pixel and its 3x3 neighbourhood resolved over `frames` frames with the port's functions in the order the
+/// resolve pass calls them (clip box, change test, noise box, target, clip, blend, noise update). The pixel sits
+/// on a ridge: its true value is `peak` on every channel, its eight neighbours' 0.06 lower; every value is its
+/// truth plus Gaussian noise of deviation sigma, drawn anew each frame. From frame `change` on every truth drops
+/// by `step` (a light change). Without the noise box (`noise_box` false) the change test and the box are skipped:
+/// the resolve as it was.
+ridge_run resolve_ridge(bool noise_box, int frames, int change, float step, std::uint32_t seed) {
+    const float peak = 0.6f, sigma = 0.02f, weight = EMCV_RESOLVE_BLEND;
+    std::mt19937 rng(seed);
+    std::normal_distribution<float> gauss(0.0f, sigma);
+    glm::vec3 history(peak);
+    glm::vec4 noise(0.0f);
+    ridge_run run;
+    for (int f = 0; f < frames; ++f) {
+        const float drop = f >= change ? step : 0.0f;
+        glm::vec3 sum(0.0f), sum_squares(0.0f), filtered(0.0f), current(0.0f);
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                const float truth = (dx == 0 && dy == 0 ? peak : peak - 0.06f) - drop;
+                const glm::vec3 v = glm::vec3(truth) + glm::vec3(gauss(rng), gauss(rng), gauss(rng));
+                if (dx == 0 && dy == 0) current = v;
+                sum += v;
+                sum_squares += v * v;
+                filtered += port::emcv_resolve_filter_weight(dx, dy) * v;
+            }
+        glm::vec3 lo, hi;
+        port::emcv_resolve_clip_box(sum, sum_squares, 9.0f, current, lo, hi);
+        const float move = filtered.x - history.x;
+        const bool changed = noise_box && port::emcv_resolve_neighbourhood_changed(move, noise, weight);
+        if (noise_box && !changed) port::emcv_resolve_noise_box(current, glm::vec3(noise), lo, hi);
+        const glm::vec3 target = port::emcv_resolve_clip(filtered, current, lo, hi);
+        const float t = port::emcv_resolve_clip_fraction(history, target, lo, hi);
+        const glm::vec3 kept = target + t * (history - target);
+        history = port::emcv_resolve_blend(kept, current, weight);
+        noise = port::emcv_resolve_noise_update(noise, current, kept, t, move, changed, weight);
+        const glm::vec3 e = history - glm::vec3(peak - drop);
+        run.error.push_back(static_cast<double>(glm::dot(e, e)) / 3.0);
+        run.restarted.push_back(noise == glm::vec4(0.0f));
+    }
+    return run;
+}
+
+double mean_of(const std::vector<double>& v, std::size_t from, std::size_t to) {
+    double sum = 0.0;
+    for (std::size_t i = from; i < to; ++i) sum += v[i];
+    return sum / static_cast<double>(to - from);
+}
+
+}  // namespace
+
+TEST_CASE("resolve noise box: a pixel above its neighbours keeps its converged history, and a light change, even "
+          "one below the pixel's own noise, restarts it") {
+    const float sigma = 0.02f;
+    // Still lighting. An exponential average of weight w keeps w / (2 - w) of the noise variance (0.0526 sigma^2
+    // at w = 0.1) when nothing clips it. The ridge's neighbourhood box ends under the pixel's true value (its
+    // mean is 0.053 lower, its spread about 0.03), so without the noise box the converged history is clipped
+    // towards the current value on every frame whose noise falls inwards: a bias the blend keeps, measured at
+    // about 30 times that variance. With it, what is left is the frames after a false change (the 3-deviation
+    // test reads a variance estimated from about 19 frames: 1-2% of the frames here), each restarting the state
+    // for about 1 / w frames at the neighbourhood's box: 2.5-3.7 times the blend's variance over seeds 1-5 and
+    // this one. Bounds: under 5 times with the noise box, over 10 times without (a factor 2 either side).
+    const double blend_variance = EMCV_RESOLVE_BLEND / (2.0 - EMCV_RESOLVE_BLEND) * sigma * sigma;
+    const ridge_run with = resolve_ridge(true, 4000, 4000, 0.0f, 20261202u);
+    const ridge_run without = resolve_ridge(false, 4000, 4000, 0.0f, 20261202u);
+    const double with_mse = mean_of(with.error, 100, 4000), without_mse = mean_of(without.error, 100, 4000);
+    INFO("mse / blend variance: with the noise box " << with_mse / blend_variance << ", without "
+                                                     << without_mse / blend_variance);
+    CHECK(with_mse < 5.0 * blend_variance);
+    CHECK(without_mse > 10.0 * blend_variance);
+
+    // A drop of 10 sigma at frame 200 leaves every box: the state restarts on that frame, and over the 30
+    // frames from it the error is within the blend's variance of the resolve without the noise box.
+    const ridge_run big = resolve_ridge(true, 260, 200, 10.0f * sigma, 7u);
+    const ridge_run big_without = resolve_ridge(false, 260, 200, 10.0f * sigma, 7u);
+    CHECK(big.restarted[200]);
+    CHECK(mean_of(big.error, 200, 230) <= mean_of(big_without.error, 200, 230) + blend_variance);
+
+    // A drop of 2 sigma, inside the pixel's own 3-deviation box but 4.5 deviations of the filtered move (sigma
+    // sqrt(9/64 + 1/19) = 0.44 sigma): found on its first frame in most runs, within 3 frames in every one
+    // of 20 seeds (a miss per frame needs the filtered noise 1.5 deviations against the drop: under 7%).
+    int found_at_once = 0;
+    for (std::uint32_t seed = 1; seed <= 20; ++seed) {
+        const ridge_run small = resolve_ridge(true, 210, 200, 2.0f * sigma, seed);
+        INFO("seed " << seed);
+        CHECK((small.restarted[200] || small.restarted[201] || small.restarted[202]));
+        found_at_once += small.restarted[200] ? 1 : 0;
+    }
+    CHECK(found_at_once >= 15);
 }

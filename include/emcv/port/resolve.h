@@ -9,6 +9,8 @@
 // TUNABLES   EMCV_RESOLVE_BLEND ........ weight of the current frame in the blend, (0, 1]; default 0.1
 //            EMCV_RESOLVE_CLIP_SIGMA ... half-width of the clip box in neighbourhood standard deviations,
 //                                        (0, 4]; default 1
+//            EMCV_RESOLVE_NOISE_SIGMAS . half-width of the temporal noise box in the pixel's own temporal
+//                                        deviations, [0, 6]; default 3 (0: the neighbourhood's box alone)
 #ifndef EMCV_PORT_RESOLVE_H
 #define EMCV_PORT_RESOLVE_H
 
@@ -27,6 +29,14 @@
 /// (Salvi 2016's variance clipping, gamma = 1). Range (0, 4].
 #ifndef EMCV_RESOLVE_CLIP_SIGMA
 #define EMCV_RESOLVE_CLIP_SIGMA 1.0f
+#endif
+
+/// Half-width of the temporal noise box around the current value, in the pixel's own temporal standard deviations
+/// (emcv_resolve_noise_box): three, so that a converged history lies inside it on all but 0.3% of the frames of a
+/// Gaussian noise (the two-sided 3-sigma bound) and only a change beyond the pixel's own noise is clipped by it.
+/// Range [0, 6]; 0 leaves the neighbourhood's box alone (the resolve without it, bit for bit).
+#ifndef EMCV_RESOLVE_NOISE_SIGMAS
+#define EMCV_RESOLVE_NOISE_SIGMAS 3.0f
 #endif
 
 EMCV_PORT_BEGIN
@@ -66,7 +76,8 @@ EMCV_FN void emcv_resolve_clip_box(EMCV_IN(vec3) sum, EMCV_IN(vec3) sum_squares,
 /// "Temporal resolve"). Inside the box the history is kept unchanged. The box is at least half an 8-bit display
 /// step wide on every side: a flat channel (zero spread) would otherwise clip the history's rounding error and
 /// pull a still pixel off its value, by differences the display cannot show.
-EMCV_FN vec3 emcv_resolve_clip(EMCV_IN(vec3) history, EMCV_IN(vec3) target, EMCV_IN(vec3) lo, EMCV_IN(vec3) hi) {
+EMCV_FN float emcv_resolve_clip_fraction(EMCV_IN(vec3) history, EMCV_IN(vec3) target, EMCV_IN(vec3) lo,
+                                         EMCV_IN(vec3) hi) {
     vec3 centre = 0.5f * (lo + hi);
     vec3 extent = max(0.5f * (hi - lo), vec3(0.5f / 255.0f));
     vec3 low = centre - extent;
@@ -78,7 +89,12 @@ EMCV_FN vec3 emcv_resolve_clip(EMCV_IN(vec3) history, EMCV_IN(vec3) target, EMCV
         if (offset[c] > 0.0f) t = min(t, (high[c] - target[c]) / offset[c]);
         if (offset[c] < 0.0f) t = min(t, (low[c] - target[c]) / offset[c]);
     }
-    return target + max(t, 0.0f) * offset;
+    return max(t, 0.0f);
+}
+
+/// The history clipped into the box towards `target` (emcv_resolve_clip_fraction's t along history - target).
+EMCV_FN vec3 emcv_resolve_clip(EMCV_IN(vec3) history, EMCV_IN(vec3) target, EMCV_IN(vec3) lo, EMCV_IN(vec3) hi) {
+    return target + emcv_resolve_clip_fraction(history, target, lo, hi) * (history - target);
 }
 
 /// The weight of the neighbour at (dx, dy), each in {-1, 0, 1}, in the 3x3 filter of the clip's target: the
@@ -86,6 +102,59 @@ EMCV_FN vec3 emcv_resolve_clip(EMCV_IN(vec3) history, EMCV_IN(vec3) target, EMCV
 /// (a Gaussian of about 0.7 px, as engines filter the current frame for their clip).
 EMCV_FN float emcv_resolve_filter_weight(int dx, int dy) {
     return float((2 - abs(dx)) * (2 - abs(dy))) * 0.0625f;
+}
+
+// The temporal noise state of a pixel (a vec4 beside its resolved value): xyz, the variance per channel (YCoCg) of
+// its current value around the history the resolve kept, an exponential average at the blend's weight (the
+// history's own memory); w, the luma offset of its filtered current value from its history, averaged the same
+// way (a pixel on a ridge sits above its filtered value for good; what moves that offset is a change). All 0 where
+// nothing is measured yet: a new history, or one restarted by a change.
+
+/// The clip box grown to hold the current value -+ EMCV_RESOLVE_NOISE_SIGMAS of the pixel's temporal standard
+/// deviations (`noise`: the noise state's variances; 0 leaves the box as it is). The neighbourhood's box measures
+/// the spread of nine different pixels, detail as well as noise: a pixel that stands above its neighbours (a
+/// ridge, a highlight, skin's relief) has a converged history beyond that box on every frame whose noise falls
+/// inwards, and clipping it there pulls the pixel towards its neighbours, a blur the history keeps (docs/frame.md,
+/// "Temporal resolve"). The pixel's own temporal spread is its noise alone while nothing changes, and a history
+/// within a few of its deviations of the current value is one the noise cannot tell from it.
+EMCV_FN void emcv_resolve_noise_box(EMCV_IN(vec3) current, EMCV_IN(vec3) noise, EMCV_INOUT(vec3) lo,
+                                    EMCV_INOUT(vec3) hi) {
+    vec3 half_width = float(EMCV_RESOLVE_NOISE_SIGMAS) * sqrt(max(noise, vec3(0.0f)));
+    lo = min(lo, current - half_width);
+    hi = max(hi, current + half_width);
+}
+
+/// Whether the pixel's neighbourhood moved beyond its noise since the history was made (a light change): the luma
+/// offset `move` = filtered current value - history, against the offset the noise state has learnt, is off by more
+/// than EMCV_RESOLVE_NOISE_SIGMAS of its own deviation. A change below one pixel's noise moves all nine pixels the
+/// same way, and the filter averages their noise down: its variance is the sum of the squared filter weights (9 /
+/// 64) times the pixel's, plus the history's, weight / (2 - weight) of it (an exponential average of independent
+/// frames); both from the tracked variance, which is that of the current value around the history (one pixel's
+/// noise taken for its neighbours'). False where no variance is measured yet (the neighbourhood's box decides).
+EMCV_FN bool emcv_resolve_neighbourhood_changed(float move, EMCV_IN(vec4) state, float weight) {
+    if (!(state.x > 0.0f)) return false;
+    float filter_gain = 0.0f;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) filter_gain += emcv_resolve_filter_weight(dx, dy) * emcv_resolve_filter_weight(dx, dy);
+    float spread = (filter_gain + weight / (2.0f - weight)) * state.x;
+    return abs(move - state.w) > float(EMCV_RESOLVE_NOISE_SIGMAS) * sqrt(spread);
+}
+
+/// The noise state after this frame. Where the neighbourhood changed (emcv_resolve_neighbourhood_changed) it
+/// restarts at 0, so that a change never widens the box that would then keep the old image: the box is the
+/// neighbourhood's alone until the pixel's noise is measured again. Where the clip moved the history
+/// (`clip_fraction` < 1: a noise outlier, or a pixel whose box the noise does not yet widen) it is kept as it was:
+/// the move of a clipped history is not the pixel's noise, and restarting there would hold a pixel that stands out
+/// of its neighbourhood at the neighbourhood's box for good. Otherwise the exponential averages at weight
+/// `weight` take in the squared difference of the current value and the kept history, and the luma offset `move`
+/// (the first one as it is).
+EMCV_FN vec4 emcv_resolve_noise_update(EMCV_IN(vec4) state, EMCV_IN(vec3) current, EMCV_IN(vec3) kept_history,
+                                       float clip_fraction, float move, bool changed, float weight) {
+    if (changed) return vec4(0.0f);
+    if (clip_fraction < 1.0f) return state;
+    vec3 d = current - kept_history;
+    float offset = state.x > 0.0f ? mix(state.w, move, weight) : move;
+    return vec4(mix(vec3(state.x, state.y, state.z), d * d, weight), offset);
 }
 
 /// The Catmull-Rom weights of the four texels around a sample at fraction t in [0, 1) past the second texel
