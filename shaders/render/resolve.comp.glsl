@@ -90,7 +90,7 @@ bool reprojected_history(ivec2 p, float depth, ivec2 local, out vec3 history, ou
     if (!(weight_sum > 0.5f)) return false;
     history /= weight_sum;
     noise /= weight_sum;
-    noise.xyz = max(noise.xyz, vec3(0.0f));  // Catmull-Rom's negative lobes
+    noise.xy = max(noise.xy, vec2(0.0f));  // variances: Catmull-Rom's negative lobes
     return true;
 }
 
@@ -125,15 +125,16 @@ void main() {
         }
         vec3 lo, hi;
         emcv_resolve_clip_box(sum, sum_squares, 9.0f, current, lo, hi);
-        // The pixel's temporal noise widens the box, unless its neighbourhood moved beyond that noise.
-        float move = filtered.x - history.x;
-        bool changed = emcv_resolve_neighbourhood_changed(move, noise, float(EMCV_RESOLVE_BLEND));
-        if (!changed) emcv_resolve_noise_box(current, noise.xyz, lo, hi);
+        // The pixel's temporal noise widens the box, unless the history no longer shows what that noise
+        // scatters around (a light change).
+        vec2 moves = emcv_resolve_moves(filtered, current, history);
+        bool changed = emcv_resolve_history_changed(moves, noise, float(EMCV_RESOLVE_BLEND));
+        if (!changed) emcv_resolve_noise_box(current, noise, lo, hi);
         vec3 target = emcv_resolve_clip(filtered, current, lo, hi);
         float t = emcv_resolve_clip_fraction(history, target, lo, hi);
         vec3 kept = target + t * (history - target);
         resolved = emcv_resolve_blend(kept, current, float(EMCV_RESOLVE_BLEND));
-        noise_next = emcv_resolve_noise_update(noise, current, kept, t, move, changed, float(EMCV_RESOLVE_BLEND));
+        noise_next = emcv_resolve_noise_update(noise, current, kept, t, moves, changed, float(EMCV_RESOLVE_BLEND));
     }
     imageStore(history_out, p, vec4(resolved, depth));
     imageStore(noise_out, p, noise_next);

@@ -104,57 +104,81 @@ EMCV_FN float emcv_resolve_filter_weight(int dx, int dy) {
     return float((2 - abs(dx)) * (2 - abs(dy))) * 0.0625f;
 }
 
-// The temporal noise state of a pixel (a vec4 beside its resolved value): xyz, the variance per channel (YCoCg) of
-// its current value around the history the resolve kept, an exponential average at the blend's weight (the
-// history's own memory); w, the luma offset of its filtered current value from its history, averaged the same
-// way (a pixel on a ridge sits above its filtered value for good; what moves that offset is a change). All 0 where
-// nothing is measured yet: a new history, or one restarted by a change.
+// The temporal noise state of a pixel (a vec4 beside its resolved value), every entry an exponential average at the
+// blend's weight (the history's own memory) of what the resolve saw at the pixel while it kept its history:
+//   x  the variance of its current luma around the kept history (YCoCg's Y),
+//   y  the same for its chroma (the mean of Co's and Cg's),
+//   z  the luma offset of its filtered current value from its history (a pixel on a ridge sits above its
+//      filtered value for good; what moves that offset is a change),
+//   w  the mean of its current luma's difference from its history (zero-mean noise averages out; a change that
+//      the history lags behind, such as a slow fade, does not).
+// x, y and z are 0 where nothing is measured yet (a new history, or one restarted by a change); w is 0 only in a
+// new history.
 
 /// The clip box grown to hold the current value -+ EMCV_RESOLVE_NOISE_SIGMAS of the pixel's temporal standard
-/// deviations (`noise`: the noise state's variances; 0 leaves the box as it is). The neighbourhood's box measures
-/// the spread of nine different pixels, detail as well as noise: a pixel that stands above its neighbours (a
-/// ridge, a highlight, skin's relief) has a converged history beyond that box on every frame whose noise falls
+/// deviations (the noise state's luma and chroma variances; 0 leaves the box as it is). The neighbourhood's box
+/// measures the spread of nine different pixels, detail as well as noise: a pixel that stands above its neighbours
+/// (a ridge, a highlight, skin's relief) has a converged history beyond that box on every frame whose noise falls
 /// inwards, and clipping it there pulls the pixel towards its neighbours, a blur the history keeps (docs/frame.md,
 /// "Temporal resolve"). The pixel's own temporal spread is its noise alone while nothing changes, and a history
 /// within a few of its deviations of the current value is one the noise cannot tell from it.
-EMCV_FN void emcv_resolve_noise_box(EMCV_IN(vec3) current, EMCV_IN(vec3) noise, EMCV_INOUT(vec3) lo,
+EMCV_FN void emcv_resolve_noise_box(EMCV_IN(vec3) current, EMCV_IN(vec4) state, EMCV_INOUT(vec3) lo,
                                     EMCV_INOUT(vec3) hi) {
-    vec3 half_width = float(EMCV_RESOLVE_NOISE_SIGMAS) * sqrt(max(noise, vec3(0.0f)));
+    vec3 half_width = float(EMCV_RESOLVE_NOISE_SIGMAS) * sqrt(max(vec3(state.x, state.y, state.y), vec3(0.0f)));
     lo = min(lo, current - half_width);
     hi = max(hi, current + half_width);
 }
 
-/// Whether the pixel's neighbourhood moved beyond its noise since the history was made (a light change): the luma
-/// offset `move` = filtered current value - history, against the offset the noise state has learnt, is off by more
-/// than EMCV_RESOLVE_NOISE_SIGMAS of its own deviation. A change below one pixel's noise moves all nine pixels the
-/// same way, and the filter averages their noise down: its variance is the sum of the squared filter weights (9 /
-/// 64) times the pixel's, plus the history's, weight / (2 - weight) of it (an exponential average of independent
-/// frames); both from the tracked variance, which is that of the current value around the history (one pixel's
-/// noise taken for its neighbours'). False where no variance is measured yet (the neighbourhood's box decides).
-EMCV_FN bool emcv_resolve_neighbourhood_changed(float move, EMCV_IN(vec4) state, float weight) {
+/// This frame's moves against the reprojected history, luma: x the filtered current value's, y the current
+/// value's (what emcv_resolve_history_changed tests and emcv_resolve_noise_update averages).
+EMCV_FN vec2 emcv_resolve_moves(EMCV_IN(vec3) filtered, EMCV_IN(vec3) current, EMCV_IN(vec3) history) {
+    return vec2(filtered.x - history.x, current.x - history.x);
+}
+
+/// Whether the history no longer shows what the pixel's noise scatters around (a light change): either the
+/// filtered move (`moves`.x) is off the offset the state has learnt by more than EMCV_RESOLVE_NOISE_SIGMAS of its
+/// deviation, or the mean of the pixel's moves, with this frame's taken in, is further from 0 than that many
+/// deviations of such a mean. A change below one pixel's noise moves its whole neighbourhood the same way, and
+/// the filter averages their noise down: the filtered value's variance is the sum of the squared filter weights
+/// (9 / 64) times a pixel's, the history's weight / (2 - weight) of it (an exponential average of independent
+/// frames), and a mean of the moves at most that (the bound for independent moves; moves against a history that
+/// follows them are anticorrelated and average out faster). A slow change (a fade) moves the pixel a
+/// little every frame and the history lags behind it by the same amount every frame: the mean of its moves then
+/// stays off 0 where noise would average out. Both from the tracked luma variance (one pixel's noise taken for
+/// its neighbours'). False where no variance is measured yet (the neighbourhood's box decides).
+EMCV_FN bool emcv_resolve_history_changed(EMCV_IN(vec2) moves, EMCV_IN(vec4) state, float weight) {
     if (!(state.x > 0.0f)) return false;
     float filter_gain = 0.0f;
     for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) filter_gain += emcv_resolve_filter_weight(dx, dy) * emcv_resolve_filter_weight(dx, dy);
-    float spread = (filter_gain + weight / (2.0f - weight)) * state.x;
-    return abs(move - state.w) > float(EMCV_RESOLVE_NOISE_SIGMAS) * sqrt(spread);
+    float average_gain = weight / (2.0f - weight);
+    float k = float(EMCV_RESOLVE_NOISE_SIGMAS);
+    bool neighbourhood_moved = abs(moves.x - state.z) > k * sqrt((filter_gain + average_gain) * state.x);
+    bool mean_moved = abs(mix(state.w, moves.y, weight)) > k * sqrt(average_gain * state.x);
+    return neighbourhood_moved || mean_moved;
 }
 
-/// The noise state after this frame. Where the neighbourhood changed (emcv_resolve_neighbourhood_changed) it
-/// restarts at 0, so that a change never widens the box that would then keep the old image: the box is the
-/// neighbourhood's alone until the pixel's noise is measured again. Where the clip moved the history
-/// (`clip_fraction` < 1: a noise outlier, or a pixel whose box the noise does not yet widen) it is kept as it was:
-/// the move of a clipped history is not the pixel's noise, and restarting there would hold a pixel that stands out
-/// of its neighbourhood at the neighbourhood's box for good. Otherwise the exponential averages at weight
-/// `weight` take in the squared difference of the current value and the kept history, and the luma offset `move`
-/// (the first one as it is).
+/// The noise state after this frame. Where the history changed (emcv_resolve_history_changed) the variances and
+/// the offset restart at 0, so that a change never widens the box that would then keep the old image: the box is
+/// the neighbourhood's alone until the pixel's noise is measured again. The mean of the moves carries on through
+/// a restart: a fade goes on moving the pixel, and its evidence must keep the box closed while it lasts. Where the
+/// clip moved the history (`clip_fraction` < 1: a noise outlier, or a pixel whose box the noise does not yet
+/// widen) the state is kept as it was: the move of a clipped history is not the pixel's noise, and restarting there
+/// would hold a pixel that stands out of its neighbourhood at the neighbourhood's box for good. Otherwise the
+/// averages take in this frame: the squared differences of the current value and the kept history, the filtered
+/// move and the pixel's move. A state with nothing measured takes this frame's squares and filtered move as they
+/// are (one frame's unbiased estimate: an average started from 0 would read the noise as far smaller than it is
+/// for its first frames, and the moves' mean against it as a change).
 EMCV_FN vec4 emcv_resolve_noise_update(EMCV_IN(vec4) state, EMCV_IN(vec3) current, EMCV_IN(vec3) kept_history,
-                                       float clip_fraction, float move, bool changed, float weight) {
-    if (changed) return vec4(0.0f);
+                                       float clip_fraction, EMCV_IN(vec2) moves, bool changed, float weight) {
+    float drift = mix(state.w, moves.y, weight);
+    if (changed) return vec4(0.0f, 0.0f, 0.0f, drift);
     if (clip_fraction < 1.0f) return state;
     vec3 d = current - kept_history;
-    float offset = state.x > 0.0f ? mix(state.w, move, weight) : move;
-    return vec4(mix(vec3(state.x, state.y, state.z), d * d, weight), offset);
+    vec2 variances = vec2(d.x * d.x, 0.5f * (d.y * d.y + d.z * d.z));
+    if (!(state.x > 0.0f)) return vec4(variances.x, variances.y, moves.x, drift);
+    return vec4(mix(state.x, variances.x, weight), mix(state.y, variances.y, weight), mix(state.z, moves.x, weight),
+                drift);
 }
 
 /// The Catmull-Rom weights of the four texels around a sample at fraction t in [0, 1) past the second texel
