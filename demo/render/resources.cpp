@@ -244,19 +244,13 @@ void make_previous_gbuffer(gpu_resources& r) {
 void make_resolve_targets(gpu_resources& r) {
     r.resolve_history = make_cleared_target(GL_RGBA32F, r.width, r.height);
     r.resolve_history_previous = make_cleared_target(GL_RGBA32F, r.width, r.height);  // depth 0: no history
-    r.resolve_noise = make_cleared_target(GL_RGBA32F, r.width, r.height);
-    r.resolve_noise_previous = make_cleared_target(GL_RGBA32F, r.width, r.height);
     r.resolved_display = make_target(GL_RGBA8, r.width, r.height);
 }
 
-void swap_resolve_history(gpu_resources& r) {
-    std::swap(r.resolve_history, r.resolve_history_previous);
-    std::swap(r.resolve_noise, r.resolve_noise_previous);
-}
+void swap_resolve_history(gpu_resources& r) { std::swap(r.resolve_history, r.resolve_history_previous); }
 
 void forget_resolve_history(gpu_resources& r) {
     glClearTexImage(r.resolve_history_previous.id(), 0, GL_RED, GL_FLOAT, nullptr);
-    glClearTexImage(r.resolve_noise_previous.id(), 0, GL_RGBA, GL_FLOAT, nullptr);
 }
 
 void swap_gbuffer(gpu_resources& r) {

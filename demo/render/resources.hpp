@@ -71,9 +71,8 @@ struct gpu_resources {
     /// The temporal resolve's (--resolve taa; empty otherwise): this frame's history written, the previous
     /// frame's read (RGBA32F: resolved display values in YCoCg and the view depth, 0 = no history; binary16
     /// would do on hardware that rounds, but llvmpipe's binary16 store truncates, and the history, stored 20 times
-    /// over, walked a still pixel 2 steps off), its temporal noise state likewise (RGBA32F: emcv/port/resolve.h),
-    /// and the resolved display image (RGBA8).
-    gl::texture_2d resolve_history, resolve_history_previous, resolve_noise, resolve_noise_previous, resolved_display;
+    /// over, walked a still pixel 2 steps off), and the resolved display image (RGBA8).
+    gl::texture_2d resolve_history, resolve_history_previous, resolved_display;
     gl::texture_2d shadow_maps;  ///< GL_TEXTURE_2D_ARRAY, one layer per light in shadow_lights
     std::vector<gl::framebuffer> shadow_fbos;
     std::vector<std::size_t> shadow_lights;  ///< light index per layer

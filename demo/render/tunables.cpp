@@ -32,8 +32,6 @@ const std::vector<tunable>& tunables() {
          EMCV_RESOLVE_BLEND},
         {"EMCV_RESOLVE_CLIP_SIGMA", t::real, 0.0, 4.0, true, "temporal resolve: clip box half-width in std devs",
          EMCV_RESOLVE_CLIP_SIGMA},
-        {"EMCV_RESOLVE_NOISE_SIGMAS", t::real, 0.0, 6.0, false,
-         "temporal resolve: noise box half-width in the pixel's temporal std devs", EMCV_RESOLVE_NOISE_SIGMAS},
     };
     return all;
 }

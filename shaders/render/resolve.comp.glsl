@@ -22,8 +22,6 @@ layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_RESOLVE_CURRENT)) uniform sampler2D c
 layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_RESOLVE_HISTORY)) uniform sampler2D history_previous;
 layout(rgba32f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_RESOLVE_HISTORY)) writeonly uniform image2D history_out;
 layout(rgba8, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_RESOLVED)) writeonly uniform image2D resolved_out;
-layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_RESOLVE_NOISE)) uniform sampler2D noise_previous;
-layout(rgba32f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_RESOLVE_NOISE)) writeonly uniform image2D noise_out;
 
 #define APRON_SIDE (EMCV_RENDER_TILE_SIZE + 2)
 shared vec3 tile_ycocg[APRON_SIDE * APRON_SIDE];
@@ -64,9 +62,8 @@ bool history_of_pixel(float history_depth, float expected_depth, ivec2 local) {
 }
 
 /// Last frame's resolved value (YCoCg) at this surface's previous position, or false where none shows it.
-bool reprojected_history(ivec2 p, float depth, ivec2 local, out vec3 history, out vec4 noise) {
+bool reprojected_history(ivec2 p, float depth, ivec2 local, out vec3 history) {
     history = vec3(0.0f);
-    noise = vec4(0.0f);
     float expected_depth = emcv_render_previous_depth(p, depth);
     // The previous position of p's centre, in texel-centre coordinates (between four texel centres).
     vec2 previous = emcv_render_previous_position(p) - 0.5f;
@@ -82,15 +79,12 @@ bool reprojected_history(ivec2 p, float depth, ivec2 local, out vec3 history, ou
             vec4 texel = texelFetch(history_previous, q, 0);
             if (!history_of_pixel(texel.w, expected_depth, local)) continue;
             history += w * texel.xyz;
-            noise += w * texelFetch(noise_previous, q, 0);
             weight_sum += w;
         }
     }
     // Too little of the kernel's weight on this surface (a disocclusion, or only negative lobes): no history.
     if (!(weight_sum > 0.5f)) return false;
     history /= weight_sum;
-    noise /= weight_sum;
-    noise.xy = max(noise.xy, vec2(0.0f));  // variances: Catmull-Rom's negative lobes
     return true;
 }
 
@@ -110,10 +104,9 @@ void main() {
     float depth = emcv_render_depth(p);
     vec3 resolved = current;
     vec3 history;
-    vec4 noise, noise_next = vec4(0.0f);
     // The background is blended only under jitter (its silhouette pixels mix with the object's); without
     // jitter it does not change and is shown as it is.
-    if ((depth > 0.0f || jitters()) && reprojected_history(p, depth, local, history, noise)) {
+    if ((depth > 0.0f || jitters()) && reprojected_history(p, depth, local, history)) {
         vec3 sum = vec3(0.0f), sum_squares = vec3(0.0f), filtered = vec3(0.0f);
         for (int dy = -1; dy <= 1; ++dy) {
             for (int dx = -1; dx <= 1; ++dx) {
@@ -125,18 +118,9 @@ void main() {
         }
         vec3 lo, hi;
         emcv_resolve_clip_box(sum, sum_squares, 9.0f, current, lo, hi);
-        // The pixel's temporal noise widens the box, unless the history no longer shows what that noise
-        // scatters around (a light change).
-        vec2 moves = emcv_resolve_moves(filtered, current, history);
-        bool changed = emcv_resolve_history_changed(moves, noise, float(EMCV_RESOLVE_BLEND));
-        if (!changed) emcv_resolve_noise_box(current, noise, lo, hi);
         vec3 target = emcv_resolve_clip(filtered, current, lo, hi);
-        float t = emcv_resolve_clip_fraction(history, target, lo, hi);
-        vec3 kept = target + t * (history - target);
-        resolved = emcv_resolve_blend(kept, current, float(EMCV_RESOLVE_BLEND));
-        noise_next = emcv_resolve_noise_update(noise, current, kept, t, moves, changed, float(EMCV_RESOLVE_BLEND));
+        resolved = emcv_resolve_blend(emcv_resolve_clip(history, target, lo, hi), current, float(EMCV_RESOLVE_BLEND));
     }
     imageStore(history_out, p, vec4(resolved, depth));
-    imageStore(noise_out, p, noise_next);
     imageStore(resolved_out, p, vec4(clamp(emcv_ycocg_to_rgb(resolved), 0.0f, 1.0f), 1.0f));
 }

@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <filesystem>
 #include <vector>
 
 #include "../gpu/gl_test_support.hpp"
@@ -136,51 +135,6 @@ TEST_CASE("the resolve removes most of a stochastic method's noise under still l
     noisy.emplace_back(s, method{method::kind::cv, 0}, budget);
     std::vector<double> raw(noisy.size(), 0.0), resolved(noisy.size(), 0.0);
     for (int frame = 0; frame < 40; ++frame) {
-        reference.render(frame);
-        for (renderer& r : noisy) r.render(frame);
-        if (frame < 20) continue;
-        const emcv::gl::float_image truth = reference.display(), mask = reference.sss_mask();
-        for (std::size_t i = 0; i < noisy.size(); ++i) {
-            raw[i] += squared_error(noisy[i].display(), truth, mask);
-            resolved[i] += squared_error(noisy[i].shown(), truth, mask);
-        }
-    }
-    for (std::size_t i = 0; i < noisy.size(); ++i) {
-        REQUIRE(resolved[i] > 0.0);
-        const double gain_db = 10.0 * std::log10(raw[i] / resolved[i]);
-        INFO(noisy[i].current_method().name() << ": raw " << raw[i] << ", resolved " << resolved[i] << ": " << gain_db
-                                              << " dB");
-        CHECK(gain_db >= 6.0);
-    }
-    CHECK(messenger.error_count() == 0);
-}
-
-TEST_CASE("on the skin close-up the resolve keeps converged histories that stand out of their neighbourhood",
-          "[resolve]") {
-    // demo/scenes/validation/skin-close.json before its switch (lights and camera still): skin's relief and
-    // highlights make many pixels stand above or below their 3x3 neighbourhood, whose box then ends short of
-    // their converged value. Clipped to that box on every frame whose noise falls inwards, such a history is
-    // pulled towards its neighbours and the resolve gained 5.3 dB for cv at 96x96 (docs/frame.md, "Temporal
-    // resolve"); the temporal noise box (emcv_resolve_noise_box) keeps it. The same bound as on `static`: at least
-    // 6 dB less squared error over the SSS pixels than the raw frames, frames 20-29, burley-8 and cv at a budget
-    // of 8.
-    emcv::gl::context ctx = emcv::test::context_or_skip();
-    emcv::gl::debug_messenger messenger;
-    const scene s = load_scene(std::filesystem::path(EMCV_SOURCE_DIR) / "demo" / "scenes" / "validation" / "skin-close.json");
-    // 96x96, the evaluation's size: at 64x48 a pixel of this close-up holds more relief than the noise.
-    const auto at_96 = [](resolve_mode resolve) {
-        render_options o = options_with(resolve);
-        o.width = o.height = 96;
-        return o;
-    };
-    render_options budget = at_96(resolve_mode::taa);
-    add_define(budget.defines, "EMCV_HISTORY_SPP_BUDGET=8");
-    renderer reference(s, *parse_method("reference"), at_96(resolve_mode::none));
-    std::vector<renderer> noisy;
-    noisy.emplace_back(s, method{method::kind::burley, 8}, at_96(resolve_mode::taa));
-    noisy.emplace_back(s, method{method::kind::cv, 0}, budget);
-    std::vector<double> raw(noisy.size(), 0.0), resolved(noisy.size(), 0.0);
-    for (int frame = 0; frame < 30; ++frame) {
         reference.render(frame);
         for (renderer& r : noisy) r.render(frame);
         if (frame < 20) continue;

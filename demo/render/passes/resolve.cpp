@@ -13,8 +13,6 @@ void resolve(const frame_context& c) {
     glBindTextureUnit(EMCV_RENDER_TEX_RESOLVE_CURRENT, r.linear_out.id());
     glBindTextureUnit(EMCV_RENDER_TEX_RESOLVE_HISTORY, r.resolve_history_previous.id());
     glBindImageTexture(EMCV_RENDER_IMG_RESOLVE_HISTORY, r.resolve_history.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glBindTextureUnit(EMCV_RENDER_TEX_RESOLVE_NOISE, r.resolve_noise_previous.id());
-    glBindImageTexture(EMCV_RENDER_IMG_RESOLVE_NOISE, r.resolve_noise.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glBindImageTexture(EMCV_RENDER_IMG_RESOLVED, r.resolved_display.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
     glDispatchCompute(c.groups_x, c.groups_y, 1);
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);

@@ -9,8 +9,6 @@
 // TUNABLES   EMCV_RESOLVE_BLEND ........ weight of the current frame in the blend, (0, 1]; default 0.1
 //            EMCV_RESOLVE_CLIP_SIGMA ... half-width of the clip box in neighbourhood standard deviations,
 //                                        (0, 4]; default 1
-//            EMCV_RESOLVE_NOISE_SIGMAS . half-width of the temporal noise box in the pixel's own temporal
-//                                        deviations, [0, 6]; default 3 (0: the neighbourhood's box alone)
 #ifndef EMCV_PORT_RESOLVE_H
 #define EMCV_PORT_RESOLVE_H
 
@@ -29,14 +27,6 @@
 /// (Salvi 2016's variance clipping, gamma = 1). Range (0, 4].
 #ifndef EMCV_RESOLVE_CLIP_SIGMA
 #define EMCV_RESOLVE_CLIP_SIGMA 1.0f
-#endif
-
-/// Half-width of the temporal noise box around the current value, in the pixel's own temporal standard deviations
-/// (emcv_resolve_noise_box): three, so that a converged history lies inside it on all but 0.3% of the frames of a
-/// Gaussian noise (the two-sided 3-sigma bound) and only a change beyond the pixel's own noise is clipped by it.
-/// Range [0, 6]; 0 leaves the neighbourhood's box alone (the resolve without it, bit for bit).
-#ifndef EMCV_RESOLVE_NOISE_SIGMAS
-#define EMCV_RESOLVE_NOISE_SIGMAS 3.0f
 #endif
 
 EMCV_PORT_BEGIN
@@ -76,8 +66,7 @@ EMCV_FN void emcv_resolve_clip_box(EMCV_IN(vec3) sum, EMCV_IN(vec3) sum_squares,
 /// "Temporal resolve"). Inside the box the history is kept unchanged. The box is at least half an 8-bit display
 /// step wide on every side: a flat channel (zero spread) would otherwise clip the history's rounding error and
 /// pull a still pixel off its value, by differences the display cannot show.
-EMCV_FN float emcv_resolve_clip_fraction(EMCV_IN(vec3) history, EMCV_IN(vec3) target, EMCV_IN(vec3) lo,
-                                         EMCV_IN(vec3) hi) {
+EMCV_FN vec3 emcv_resolve_clip(EMCV_IN(vec3) history, EMCV_IN(vec3) target, EMCV_IN(vec3) lo, EMCV_IN(vec3) hi) {
     vec3 centre = 0.5f * (lo + hi);
     vec3 extent = max(0.5f * (hi - lo), vec3(0.5f / 255.0f));
     vec3 low = centre - extent;
@@ -89,12 +78,7 @@ EMCV_FN float emcv_resolve_clip_fraction(EMCV_IN(vec3) history, EMCV_IN(vec3) ta
         if (offset[c] > 0.0f) t = min(t, (high[c] - target[c]) / offset[c]);
         if (offset[c] < 0.0f) t = min(t, (low[c] - target[c]) / offset[c]);
     }
-    return max(t, 0.0f);
-}
-
-/// The history clipped into the box towards `target` (emcv_resolve_clip_fraction's t along history - target).
-EMCV_FN vec3 emcv_resolve_clip(EMCV_IN(vec3) history, EMCV_IN(vec3) target, EMCV_IN(vec3) lo, EMCV_IN(vec3) hi) {
-    return target + emcv_resolve_clip_fraction(history, target, lo, hi) * (history - target);
+    return target + max(t, 0.0f) * offset;
 }
 
 /// The weight of the neighbour at (dx, dy), each in {-1, 0, 1}, in the 3x3 filter of the clip's target: the
@@ -102,83 +86,6 @@ EMCV_FN vec3 emcv_resolve_clip(EMCV_IN(vec3) history, EMCV_IN(vec3) target, EMCV
 /// (a Gaussian of about 0.7 px, as engines filter the current frame for their clip).
 EMCV_FN float emcv_resolve_filter_weight(int dx, int dy) {
     return float((2 - abs(dx)) * (2 - abs(dy))) * 0.0625f;
-}
-
-// The temporal noise state of a pixel (a vec4 beside its resolved value), every entry an exponential average at the
-// blend's weight (the history's own memory) of what the resolve saw at the pixel while it kept its history:
-//   x  the variance of its current luma around the kept history (YCoCg's Y),
-//   y  the same for its chroma (the mean of Co's and Cg's),
-//   z  the luma offset of its filtered current value from its history (a pixel on a ridge sits above its
-//      filtered value for good; what moves that offset is a change),
-//   w  the mean of its current luma's difference from its history (zero-mean noise averages out; a change that
-//      the history lags behind, such as a slow fade, does not).
-// x, y and z are 0 where nothing is measured yet (a new history, or one restarted by a change); w is 0 only in a
-// new history.
-
-/// The clip box grown to hold the current value -+ EMCV_RESOLVE_NOISE_SIGMAS of the pixel's temporal standard
-/// deviations (the noise state's luma and chroma variances; 0 leaves the box as it is). The neighbourhood's box
-/// measures the spread of nine different pixels, detail as well as noise: a pixel that stands above its neighbours
-/// (a ridge, a highlight, skin's relief) has a converged history beyond that box on every frame whose noise falls
-/// inwards, and clipping it there pulls the pixel towards its neighbours, a blur the history keeps (docs/frame.md,
-/// "Temporal resolve"). The pixel's own temporal spread is its noise alone while nothing changes, and a history
-/// within a few of its deviations of the current value is one the noise cannot tell from it.
-EMCV_FN void emcv_resolve_noise_box(EMCV_IN(vec3) current, EMCV_IN(vec4) state, EMCV_INOUT(vec3) lo,
-                                    EMCV_INOUT(vec3) hi) {
-    vec3 half_width = float(EMCV_RESOLVE_NOISE_SIGMAS) * sqrt(max(vec3(state.x, state.y, state.y), vec3(0.0f)));
-    lo = min(lo, current - half_width);
-    hi = max(hi, current + half_width);
-}
-
-/// This frame's moves against the reprojected history, luma: x the filtered current value's, y the current
-/// value's (what emcv_resolve_history_changed tests and emcv_resolve_noise_update averages).
-EMCV_FN vec2 emcv_resolve_moves(EMCV_IN(vec3) filtered, EMCV_IN(vec3) current, EMCV_IN(vec3) history) {
-    return vec2(filtered.x - history.x, current.x - history.x);
-}
-
-/// Whether the history no longer shows what the pixel's noise scatters around (a light change): either the
-/// filtered move (`moves`.x) is off the offset the state has learnt by more than EMCV_RESOLVE_NOISE_SIGMAS of its
-/// deviation, or the mean of the pixel's moves, with this frame's taken in, is further from 0 than that many
-/// deviations of such a mean. A change below one pixel's noise moves its whole neighbourhood the same way, and
-/// the filter averages their noise down: the filtered value's variance is the sum of the squared filter weights
-/// (9 / 64) times a pixel's, the history's weight / (2 - weight) of it (an exponential average of independent
-/// frames), and a mean of the moves at most that (the bound for independent moves; moves against a history that
-/// follows them are anticorrelated and average out faster). A slow change (a fade) moves the pixel a
-/// little every frame and the history lags behind it by the same amount every frame: the mean of its moves then
-/// stays off 0 where noise would average out. Both from the tracked luma variance (one pixel's noise taken for
-/// its neighbours'). False where no variance is measured yet (the neighbourhood's box decides).
-EMCV_FN bool emcv_resolve_history_changed(EMCV_IN(vec2) moves, EMCV_IN(vec4) state, float weight) {
-    if (!(state.x > 0.0f)) return false;
-    float filter_gain = 0.0f;
-    for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) filter_gain += emcv_resolve_filter_weight(dx, dy) * emcv_resolve_filter_weight(dx, dy);
-    float average_gain = weight / (2.0f - weight);
-    float k = float(EMCV_RESOLVE_NOISE_SIGMAS);
-    bool neighbourhood_moved = abs(moves.x - state.z) > k * sqrt((filter_gain + average_gain) * state.x);
-    bool mean_moved = abs(mix(state.w, moves.y, weight)) > k * sqrt(average_gain * state.x);
-    return neighbourhood_moved || mean_moved;
-}
-
-/// The noise state after this frame. Where the history changed (emcv_resolve_history_changed) the variances and
-/// the offset restart at 0, so that a change never widens the box that would then keep the old image: the box is
-/// the neighbourhood's alone until the pixel's noise is measured again. The mean of the moves carries on through
-/// a restart: a fade goes on moving the pixel, and its evidence must keep the box closed while it lasts. Where the
-/// clip moved the history (`clip_fraction` < 1: a noise outlier, or a pixel whose box the noise does not yet
-/// widen) the state is kept as it was: the move of a clipped history is not the pixel's noise, and restarting there
-/// would hold a pixel that stands out of its neighbourhood at the neighbourhood's box for good. Otherwise the
-/// averages take in this frame: the squared differences of the current value and the kept history, the filtered
-/// move and the pixel's move. A state with nothing measured takes this frame's squares and filtered move as they
-/// are (one frame's unbiased estimate: an average started from 0 would read the noise as far smaller than it is
-/// for its first frames, and the moves' mean against it as a change).
-EMCV_FN vec4 emcv_resolve_noise_update(EMCV_IN(vec4) state, EMCV_IN(vec3) current, EMCV_IN(vec3) kept_history,
-                                       float clip_fraction, EMCV_IN(vec2) moves, bool changed, float weight) {
-    float drift = mix(state.w, moves.y, weight);
-    if (changed) return vec4(0.0f, 0.0f, 0.0f, drift);
-    if (clip_fraction < 1.0f) return state;
-    vec3 d = current - kept_history;
-    vec2 variances = vec2(d.x * d.x, 0.5f * (d.y * d.y + d.z * d.z));
-    if (!(state.x > 0.0f)) return vec4(variances.x, variances.y, moves.x, drift);
-    return vec4(mix(state.x, variances.x, weight), mix(state.y, variances.y, weight), mix(state.z, moves.x, weight),
-                drift);
 }
 
 /// The Catmull-Rom weights of the four texels around a sample at fraction t in [0, 1) past the second texel
