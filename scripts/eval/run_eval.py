@@ -15,8 +15,8 @@ name the command, the commit and the GL renderer). The list's order, and so each
   2. quality     per quality scene x group x seed: emcv-demo against the reference, raw and resolved (--resolve
                  taa). Groups: "fixed" (diffuse, separable-11/17/25), then "B4", "B8", "B16", "B32" (burley-B,
                  spvg, cv, cv-notex with --spp-budget B: every method spends B samples per SSS pixel)
-  3. variations  per scene file of demo/scenes/variations/ x B in 8, 16 (burley-B, spvg, cv, cv-notex; with
-                 separable-17 and diffuse at B = 8), first seed
+  3. variations  per scene file of demo/scenes/variations/, then of demo/scenes/validation/, x B in 8, 16
+                 (burley-B, spvg, cv, cv-notex; with separable-17 and diffuse at B = 8), first seed
   4. teaser      per seed: light-off in quality mode (the default target variance), the paper's teaser methods
   5. spread      emcv-golden: the golden cases with seed 2 against the goldens (seed 1)
   6. cost        per quality scene x group: emcv-eval, SSS pass ms and samples per frame (the time axis)
@@ -239,9 +239,11 @@ class Config:
         else:
             self.scenes = QUALITY_SCENES
             self.groups = ["fixed"] + [f"B{b}" for b in BUDGETS]
-            self.variations = sorted(os.path.relpath(os.path.join(ROOT, "demo", "scenes", "variations", f), ROOT)
-                                     for f in os.listdir(os.path.join(ROOT, "demo", "scenes", "variations"))
-                                     if f.endswith(".json"))
+            # The variations of light-off, then the validation scenes (docs/scenes.md): nothing was tuned on either.
+            self.variations = [os.path.relpath(os.path.join(ROOT, "demo", "scenes", folder, f), ROOT)
+                               for folder in ("variations", "validation")
+                               for f in sorted(os.listdir(os.path.join(ROOT, "demo", "scenes", folder)))
+                               if f.endswith(".json")]
             self.variation_budgets = VARIATION_BUDGETS
 
     def frames(self, scene):
