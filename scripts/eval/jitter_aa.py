@@ -20,21 +20,22 @@ Prints one markdown table per scene.
 import argparse
 import math
 import os
-import subprocess
 import sys
 import tempfile
 
 import numpy as np
 from matplotlib import image as mpimg
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import demo_figure  # noqa: E402  (the emcv-demo run the picture scripts share)
+
 
 def render(demo, out, scene, size, methods, extra, frames, seed):
-    command = [demo, "--scene", scene, "--size", size, "--method", ",".join(methods), "--seed", str(seed),
-               "--out", out] + extra
+    """One emcv-demo run writing its frames under `out` (demo_figure.render: a failed run stops with its stderr)."""
+    command = [demo, "--scene", scene, "--size", size, "--method", ",".join(methods), "--seed", str(seed)] + extra
     if frames:
         command += ["--frames", str(frames)]
-    subprocess.run(command, check=True, stdout=subprocess.DEVNULL,
-                   env=dict(os.environ, LIBGL_ALWAYS_SOFTWARE="1"))
+    demo_figure.render("jitter_aa.py", command + ["--out", out])
 
 
 def load(path):
