@@ -148,8 +148,12 @@ void main() {
     vec3 lo, hi;
     emcv_resolve_clip_box(shown, shown * shown, 1.0f, shown, lo, hi);
     // The clip's target: the current value filtered over a neighbourhood (here the pixel alone, weight 1/4 of the
-    // 3x3 filter's 4/4 at the centre, renormalised), clipped into the box towards the current value.
-    const vec3 target = emcv_resolve_clip(shown * (emcv_resolve_filter_weight(0, 0) * 4.0f), shown, lo, hi);
+    // 3x3 filter's 4/4 at the centre, renormalised) with the detail the history's neighbourhood shows put back
+    // (one value each here: no spread, the filtered value), clipped into the box towards the current value.
+    const vec3 filtered = shown * (emcv_resolve_filter_weight(0, 0) * 4.0f);
+    const vec3 detailed = emcv_resolve_target(shown, filtered, emcv_resolve_variance(shown, shown * shown, 1.0f),
+                                              emcv_resolve_variance(history, history * history, 1.0f));
+    const vec3 target = emcv_resolve_clip(detailed, shown, lo, hi);
     if (emcv_resolve_same_surface(previous.a, frame.camera.w))
         history = emcv_resolve_blend(emcv_resolve_clip(history, target, lo, hi), shown, EMCV_RESOLVE_BLEND);
     else

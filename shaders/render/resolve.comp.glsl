@@ -7,7 +7,8 @@
 // it, as engines sample their history so that resampling it every frame does not blur it, each texel only
 // where its stored view depth shows this surface, emcv_resolve_same_surface; less than half of the kernel's
 // weight there: reset to the current value), clipped to the neighbourhood's box in YCoCg towards the current
-// value filtered over its 3x3 neighbours (emcv_resolve_filter_weight), and blended
+// value filtered over its 3x3 neighbours (emcv_resolve_filter_weight) with the detail the history's own 3x3
+// neighbourhood shows put back (emcv_resolve_target), and blended
 // (include/emcv/port/resolve.h). The history keeps the resolved value and the pixel's view depth (0 for the
 // background, which is never blended: it does not change).
 #version 450 core
@@ -61,30 +62,46 @@ bool history_of_pixel(float history_depth, float expected_depth, ivec2 local) {
     return false;
 }
 
-/// Last frame's resolved value (YCoCg) at this surface's previous position, or false where none shows it.
-bool reprojected_history(ivec2 p, float depth, ivec2 local, out vec3 history) {
+/// Last frame's resolved value (YCoCg) at this surface's previous position, or false where none shows it; and
+/// the variance of the history's own 3x3 neighbourhood there (the texels around the one the position falls
+/// nearest, among the 4x4 the resampling reads, each where it shows this surface): the detail the clip's target
+/// keeps (emcv_resolve_target).
+bool reprojected_history(ivec2 p, float depth, ivec2 local, out vec3 history, out vec3 history_variance) {
     history = vec3(0.0f);
+    history_variance = vec3(0.0f);
     float expected_depth = emcv_render_previous_depth(p, depth);
     // The previous position of p's centre, in texel-centre coordinates (between four texel centres).
     vec2 previous = emcv_render_previous_position(p) - 0.5f;
     ivec2 base = ivec2(floor(previous));
     vec2 t = previous - vec2(base);
+    ivec2 nearest = base + ivec2(greaterThanEqual(t, vec2(0.5f)));
     vec4 wx = emcv_resolve_catmull_rom(t.x), wy = emcv_resolve_catmull_rom(t.y);
     float weight_sum = 0.0f;
+    vec3 near_sum = vec3(0.0f), near_sum_squares = vec3(0.0f);
+    float near_count = 0.0f;
     for (int j = 0; j < 4; ++j) {
         for (int i = 0; i < 4; ++i) {
             float w = wx[i] * wy[j];
             ivec2 q = base + ivec2(i - 1, j - 1);
-            if (w == 0.0f || !emcv_render_on_screen(q)) continue;
+            bool near = all(lessThanEqual(abs(q - nearest), ivec2(1)));
+            if ((w == 0.0f && !near) || !emcv_render_on_screen(q)) continue;
             vec4 texel = texelFetch(history_previous, q, 0);
             if (!history_of_pixel(texel.w, expected_depth, local)) continue;
-            history += w * texel.xyz;
-            weight_sum += w;
+            if (w != 0.0f) {
+                history += w * texel.xyz;
+                weight_sum += w;
+            }
+            if (near) {
+                near_sum += texel.xyz;
+                near_sum_squares += texel.xyz * texel.xyz;
+                near_count += 1.0f;
+            }
         }
     }
     // Too little of the kernel's weight on this surface (a disocclusion, or only negative lobes): no history.
     if (!(weight_sum > 0.5f)) return false;
     history /= weight_sum;
+    if (near_count > 0.0f) history_variance = emcv_resolve_variance(near_sum, near_sum_squares, near_count);
     return true;
 }
 
@@ -103,10 +120,10 @@ void main() {
     vec3 current = tile_ycocg[local.x + local.y * APRON_SIDE];
     float depth = emcv_render_depth(p);
     vec3 resolved = current;
-    vec3 history;
+    vec3 history, history_variance;
     // The background is blended only under jitter (its silhouette pixels mix with the object's); without
     // jitter it does not change and is shown as it is.
-    if ((depth > 0.0f || jitters()) && reprojected_history(p, depth, local, history)) {
+    if ((depth > 0.0f || jitters()) && reprojected_history(p, depth, local, history, history_variance)) {
         vec3 sum = vec3(0.0f), sum_squares = vec3(0.0f), filtered = vec3(0.0f);
         for (int dy = -1; dy <= 1; ++dy) {
             for (int dx = -1; dx <= 1; ++dx) {
@@ -118,7 +135,8 @@ void main() {
         }
         vec3 lo, hi;
         emcv_resolve_clip_box(sum, sum_squares, 9.0f, current, lo, hi);
-        vec3 target = emcv_resolve_clip(filtered, current, lo, hi);
+        vec3 detailed = emcv_resolve_target(current, filtered, emcv_resolve_variance(sum, sum_squares, 9.0f), history_variance);
+        vec3 target = emcv_resolve_clip(detailed, current, lo, hi);
         resolved = emcv_resolve_blend(emcv_resolve_clip(history, target, lo, hi), current, float(EMCV_RESOLVE_BLEND));
     }
     imageStore(history_out, p, vec4(resolved, depth));

@@ -42,6 +42,13 @@ EMCV_FN vec3 emcv_ycocg_to_rgb(EMCV_IN(vec3) c) {
     return vec3(c.x + c.y - c.z, c.x + c.z, c.x - c.y - c.z);
 }
 
+/// The population variance per channel of n values from the sums of their values and squares, floored at 0
+/// (the sums' rounding can make it slightly negative).
+EMCV_FN vec3 emcv_resolve_variance(EMCV_IN(vec3) sum, EMCV_IN(vec3) sum_squares, float n) {
+    vec3 mean = sum / n;
+    return max(sum_squares / n - mean * mean, vec3(0.0f));
+}
+
 /// The clip box of a neighbourhood of n values from the sums of its values and squares, per channel: mean -+
 /// EMCV_RESOLVE_CLIP_SIGMA standard deviations (population variance, floored at 0), grown to hold the pixel's
 /// own current value. Without that a pixel that stands out of its neighbourhood (a highlight's peak, an edge)
@@ -51,19 +58,19 @@ EMCV_FN vec3 emcv_ycocg_to_rgb(EMCV_IN(vec3) c) {
 EMCV_FN void emcv_resolve_clip_box(EMCV_IN(vec3) sum, EMCV_IN(vec3) sum_squares, float n, EMCV_IN(vec3) current,
                                    EMCV_OUT(vec3) lo, EMCV_OUT(vec3) hi) {
     vec3 mean = sum / n;
-    vec3 deviation = sqrt(max(sum_squares / n - mean * mean, vec3(0.0f)));
+    vec3 deviation = sqrt(emcv_resolve_variance(sum, sum_squares, n));
     lo = min(mean - float(EMCV_RESOLVE_CLIP_SIGMA) * deviation, current);
     hi = max(mean + float(EMCV_RESOLVE_CLIP_SIGMA) * deviation, current);
 }
 
 /// The history moved along the line towards `target`, a colour inside the box [lo, hi], until it lies in the box
 /// (a clip, not a per-channel clamp): the clipped colour is a mix of the history and the target, never a hue
-/// that neither holds. The resolve's target is the pixel's current value filtered over its 3x3 neighbourhood
-/// (emcv_resolve_filter_weight), itself clipped towards the current value into the box: an estimate of what
-/// this frame shows at the pixel with less noise than the pixel alone. Clipping towards the box's centre, the
-/// neighbourhood's plain mean, pulls edges and relief towards their neighbours' average, a blur the next frames
-/// keep; towards the raw current value, it keeps more of that value's noise (both measured, docs/frame.md
-/// "Temporal resolve"). Inside the box the history is kept unchanged. The box is at least half an 8-bit display
+/// that neither holds. The resolve's target is emcv_resolve_target (the current value filtered over its 3x3
+/// neighbourhood with the raw value's detail put back), itself clipped towards the current value into the box:
+/// an estimate of what this frame shows at the pixel with less noise than the pixel alone. Clipping towards the
+/// box's centre, the neighbourhood's plain mean, pulls edges and relief towards their neighbours' average, a blur
+/// the next frames keep; towards the raw current value, it keeps more of that value's noise; towards the filtered
+/// value alone, less blur than the centre, but still a blur (all measured, docs/frame.md "Temporal resolve"). Inside the box the history is kept unchanged. The box is at least half an 8-bit display
 /// step wide on every side: a flat channel (zero spread) would otherwise clip the history's rounding error and
 /// pull a still pixel off its value, by differences the display cannot show.
 EMCV_FN vec3 emcv_resolve_clip(EMCV_IN(vec3) history, EMCV_IN(vec3) target, EMCV_IN(vec3) lo, EMCV_IN(vec3) hi) {
@@ -79,6 +86,27 @@ EMCV_FN vec3 emcv_resolve_clip(EMCV_IN(vec3) history, EMCV_IN(vec3) target, EMCV
         if (offset[c] < 0.0f) t = min(t, (low[c] - target[c]) / offset[c]);
     }
     return target + max(t, 0.0f) * offset;
+}
+
+/// The clip's target: the pixel's filtered current value plus the part of its raw value's deviation from it that
+/// is detail, not noise (a local Wiener filter, Lee 1980). The current 3x3 neighbourhood's variance S holds the
+/// image's detail and this frame's noise; the reprojected history's own 3x3 neighbourhood, averaged over about
+/// 19 frames, holds the detail alone (its noise is 0.1 / (2 - 0.1) of a frame's at the default blend), variance
+/// D. The fraction of the raw deviation that is signal is then D / S, at most 1 (summed over the channels: one
+/// fraction for the colour, so that the target lies on the line from the filtered to the raw value, a colour
+/// between two that this frame shows; a fraction per channel mixes the raw luma with the filtered chroma, and
+/// the clip then drags a history that equals the raw value to that other hue). Where the history shows as much
+/// spread as this frame (detail, or a light that went down) the target is the raw value, which keeps relief and
+/// edges; where it shows none (flat skin under noise) it is the filtered value, which keeps the noise out; a
+/// history without neighbours on its surface (D = 0) gives the filtered value. Nothing here is a constant to
+/// choose. Measured against the filtered value alone and the raw value alone: docs/frame.md, "Where the clip
+/// points".
+EMCV_FN vec3 emcv_resolve_target(EMCV_IN(vec3) current, EMCV_IN(vec3) filtered, EMCV_IN(vec3) neighbourhood_variance,
+                                 EMCV_IN(vec3) history_variance) {
+    float spread = neighbourhood_variance.x + neighbourhood_variance.y + neighbourhood_variance.z;
+    float detail = history_variance.x + history_variance.y + history_variance.z;
+    float signal = spread > detail ? detail / spread : 1.0f;
+    return filtered + signal * (current - filtered);
 }
 
 /// The weight of the neighbour at (dx, dy), each in {-1, 0, 1}, in the 3x3 filter of the clip's target: the
