@@ -2,7 +2,8 @@
 // resolve: the temporal resolve after the composite (--resolve taa; docs/frame.md, "Temporal resolve"). It works
 // on display values (after the tonemap and the sRGB encoding, before the 8-bit store), where a colour's error is
 // what PSNR and a viewer see and where every value is bounded, so that one bright sample cannot hold the clip box
-// open. Per pixel: the current value and its 3x3 neighbourhood (one shared-memory tile with a one-pixel apron);
+// open. Without jitter it filters the scattered light alone and adds the specular light back after
+// (resolved_part). Per pixel: the current value and its 3x3 neighbourhood (one shared-memory tile with a one-pixel apron);
 // last frame's resolved value at the reprojected position (motion vectors; Catmull-Rom over the 4x4 texels around
 // it, as engines sample their history so that resampling it every frame does not blur it, each texel only
 // where its stored view depth shows this surface, emcv_resolve_same_surface; less than half of the kernel's
@@ -27,10 +28,22 @@ layout(rgba8, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_RESOLVED)) writeonly uni
 #define APRON_SIDE (EMCV_RENDER_TILE_SIZE + 2)
 shared vec3 tile_ycocg[APRON_SIDE * APRON_SIDE];
 
-/// The composite's value at q (clamped to the screen) as the display shows it, in YCoCg.
-vec3 display_ycocg(ivec2 q) {
+bool jitters() { return (frame.counters.w & EMCV_RENDER_FLAG_JITTER) != 0u; }
+
+/// The part of the composite at q (clamped to the screen) that the resolve filters, linear: without jitter the
+/// scattered light alone, the composite less its specular radiance. The specular light of the scene's lights is
+/// computed, not sampled: it has no noise to average, and under a moving camera it moves over the surface, so
+/// a history of it lags the view (on the orbiting skin close-up the resolve lost 15 dB to that lag). Under
+/// jitter the resolve also anti-aliases, which the whole image needs, specular edges included.
+vec3 resolved_part(ivec2 q) {
     q = clamp(q, ivec2(0), ivec2(frame.viewport.xy) - 1);
     vec3 linear = texelFetch(current_linear, q, 0).xyz;
+    if (!jitters()) linear -= texelFetch(lit_specular, q, 0).xyz;
+    return linear;
+}
+
+/// A linear colour as the display shows it, in YCoCg.
+vec3 display_ycocg(vec3 linear) {
     return emcv_rgb_to_ycocg(emcv_display_encode(linear * frame.background.w, int(frame.ambient.w)));
 }
 
@@ -40,8 +53,6 @@ vec3 display_ycocg(ivec2 q) {
 /// previous depth; the background, depth 0, matches the background), so that only a surface the neighbourhood
 /// no longer shows (a disocclusion) restarts it. Without jitter a texel must show this pixel's own surface.
 shared float tile_previous_depth[APRON_SIDE * APRON_SIDE];
-
-bool jitters() { return (frame.counters.w & EMCV_RENDER_FLAG_JITTER) != 0u; }
 
 /// The depth the surface at q had in the previous frame (0 for the background and off screen).
 float previous_depth_at(ivec2 q) {
@@ -110,7 +121,7 @@ void main() {
     ivec2 origin = ivec2(gl_WorkGroupID.xy) * EMCV_RENDER_TILE_SIZE - 1;
     for (uint i = gl_LocalInvocationIndex; i < uint(APRON_SIDE * APRON_SIDE); i += uint(EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE)) {
         ivec2 q = origin + ivec2(int(i) % APRON_SIDE, int(i) / APRON_SIDE);
-        tile_ycocg[i] = display_ycocg(q);
+        tile_ycocg[i] = display_ycocg(resolved_part(q));
         if (jitters()) tile_previous_depth[i] = previous_depth_at(q);
     }
     barrier();
@@ -140,5 +151,14 @@ void main() {
         resolved = emcv_resolve_blend(emcv_resolve_clip(history, target, lo, hi), current, float(EMCV_RESOLVE_BLEND));
     }
     imageStore(history_out, p, vec4(resolved, depth));
-    imageStore(resolved_out, p, vec4(clamp(emcv_ycocg_to_rgb(resolved), 0.0f, 1.0f), 1.0f));
+    vec3 shown = emcv_ycocg_to_rgb(resolved);
+    // The specular light added back to the resolved scattered light where it was taken out, in linear (through
+    // the display's inverse: adding it in display space would carry this frame's noise through the tonemap's
+    // curvature).
+    if (!jitters()) {
+        int tonemap = int(frame.ambient.w);
+        vec3 specular = texelFetch(lit_specular, p, 0).xyz * frame.background.w;
+        shown = emcv_display_encode(emcv_display_decode(shown, tonemap) + specular, tonemap);
+    }
+    imageStore(resolved_out, p, vec4(clamp(shown, 0.0f, 1.0f), 1.0f));
 }
