@@ -70,7 +70,7 @@ def make_variant(root, edits):
         with open(path) as f:
             text = f.read()
         if text.count(anchor) != 1:
-            sys.exit(f"adaptive_overhead.py: the anchor of a variant is not (once) in shaders/{file}: {anchor!r}")
+            sys.exit(f"{os.path.basename(sys.argv[0])}: the anchor of a variant is not (once) in shaders/{file}: {anchor!r}")
         with open(path, "w") as f:
             f.write(text.replace(anchor, replacement))
     return root
