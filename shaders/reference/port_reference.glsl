@@ -158,7 +158,8 @@ void main() {
         history = emcv_resolve_blend(emcv_resolve_clip(history, target, lo, hi), shown, EMCV_RESOLVE_BLEND);
     else
         history = shown;
-    // The display's inverse (tonemap.h): the renderer's resolve adds the specular light back through it.
-    const vec3 relit = emcv_display_encode(emcv_display_decode(emcv_ycocg_to_rgb(history), 0) + vec3(0.0f), 0);
+    // The display's inverse (tonemap.h), through which the renderer's resolve adds the specular light back
+    // (none here: the value round-trips).
+    const vec3 relit = emcv_display_encode(emcv_display_decode(emcv_ycocg_to_rgb(history), 0), 0);
     imageStore(display, texel, vec4(relit, 1.0f));
 }

@@ -3,15 +3,15 @@
 // on display values (after the tonemap and the sRGB encoding, before the 8-bit store), where a colour's error is
 // what PSNR and a viewer see and where every value is bounded, so that one bright sample cannot hold the clip box
 // open. Without jitter it filters the scattered light alone and adds the specular light back after
-// (resolved_part). Per pixel: the current value and its 3x3 neighbourhood (one shared-memory tile with a one-pixel apron);
-// last frame's resolved value at the reprojected position (motion vectors; Catmull-Rom over the 4x4 texels around
-// it, as engines sample their history so that resampling it every frame does not blur it, each texel only
-// where its stored view depth shows this surface, emcv_resolve_same_surface; less than half of the kernel's
-// weight there: reset to the current value), clipped to the neighbourhood's box in YCoCg towards the current
-// value filtered over its 3x3 neighbours (emcv_resolve_filter_weight) with the detail the history's own 3x3
-// neighbourhood shows put back (emcv_resolve_target), and blended
-// (include/emcv/port/resolve.h). The history keeps the resolved value and the pixel's view depth (0 for the
-// background, which is never blended: it does not change).
+// (resolved_part). Per pixel: the current value and its 3x3 neighbourhood (one shared-memory tile with a one-pixel
+// apron); last frame's resolved value at the reprojected position (motion vectors; Catmull-Rom over the 4x4 texels
+// around it, as engines sample their history so that resampling it every frame does not blur it, each texel only
+// where its stored view depth shows this surface, emcv_resolve_same_surface; less than half of the kernel's weight
+// there: reset to the current value), clipped to the neighbourhood's box in YCoCg towards the current value
+// filtered over its 3x3 neighbours (emcv_resolve_filter_weight) with the detail the history's own 3x3
+// neighbourhood shows put back (emcv_resolve_target), and blended (include/emcv/port/resolve.h). The history keeps
+// the resolved value and the pixel's view depth (0 for the background, which is never blended: it does not
+// change).
 #version 450 core
 
 #include "emcv/port/resolve.h"
@@ -33,7 +33,7 @@ bool jitters() { return (frame.counters.w & EMCV_RENDER_FLAG_JITTER) != 0u; }
 /// The part of the composite at q (clamped to the screen) that the resolve filters, linear: without jitter the
 /// scattered light alone, the composite less its specular radiance. The specular light of the scene's lights is
 /// computed, not sampled: it has no noise to average, and under a moving camera it moves over the surface, so
-/// a history of it lags the view (on the orbiting skin close-up the resolve lost 15 dB to that lag). Under
+/// a history of it lags the view (on the orbiting skin close-up the resolve lost 12 dB to that lag). Under
 /// jitter the resolve also anti-aliases, which the whole image needs, specular edges included.
 vec3 resolved_part(ivec2 q) {
     q = clamp(q, ivec2(0), ivec2(frame.viewport.xy) - 1);
@@ -146,7 +146,8 @@ void main() {
         }
         vec3 lo, hi;
         emcv_resolve_clip_box(sum, sum_squares, 9.0f, current, lo, hi);
-        vec3 detailed = emcv_resolve_target(current, filtered, emcv_resolve_variance(sum, sum_squares, 9.0f), history_variance);
+        vec3 spread = emcv_resolve_variance(sum, sum_squares, 9.0f);
+        vec3 detailed = emcv_resolve_target(current, filtered, spread, history_variance);
         vec3 target = emcv_resolve_clip(detailed, current, lo, hi);
         resolved = emcv_resolve_blend(emcv_resolve_clip(history, target, lo, hi), current, float(EMCV_RESOLVE_BLEND));
     }

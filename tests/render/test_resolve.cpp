@@ -219,7 +219,8 @@ TEST_CASE("without jitter the resolve adds this frame's specular light: a moving
     for (material& m : matte.materials) m.specular = 0.0f;
     render_options o = options_with(resolve_mode::taa);
     o.width = o.height = 64;
-    renderer with_specular(shiny, method{method::kind::diffuse, 0}, o), without(matte, method{method::kind::diffuse, 0}, o);
+    const method noise_free{method::kind::diffuse, 0};
+    renderer with_specular(shiny, noise_free, o), without(matte, noise_free, o);
     std::size_t within = 0, all = 0;
     for (int frame = 0; frame < 20; ++frame) {
         with_specular.render(frame);
@@ -231,8 +232,9 @@ TEST_CASE("without jitter the resolve adds this frame's specular light: a moving
         for (std::size_t p = 0; p < rs.pixels.size() / c; ++p) {
             bool ok = true;
             for (std::size_t k = 0; k < 3; ++k) {
-                const float moved = std::abs((rs.pixels[p * c + k] - rm.pixels[p * c + k]) - (ls.pixels[p * c + k] - lm.pixels[p * c + k]));
-                ok = ok && moved <= std::abs(rm.pixels[p * c + k] - lm.pixels[p * c + k]) + 2.0f / 255.0f;
+                const std::size_t i = p * c + k;
+                const float moved = std::abs((rs.pixels[i] - rm.pixels[i]) - (ls.pixels[i] - lm.pixels[i]));
+                ok = ok && moved <= std::abs(rm.pixels[i] - lm.pixels[i]) + 2.0f / 255.0f;
             }
             within += ok ? 1u : 0u;
             ++all;

@@ -70,9 +70,10 @@ EMCV_FN void emcv_resolve_clip_box(EMCV_IN(vec3) sum, EMCV_IN(vec3) sum_squares,
 /// an estimate of what this frame shows at the pixel with less noise than the pixel alone. Clipping towards the
 /// box's centre, the neighbourhood's plain mean, pulls edges and relief towards their neighbours' average, a blur
 /// the next frames keep; towards the raw current value, it keeps more of that value's noise; towards the filtered
-/// value alone, less blur than the centre, but still a blur (all measured, docs/frame.md "Temporal resolve"). Inside the box the history is kept unchanged. The box is at least half an 8-bit display
-/// step wide on every side: a flat channel (zero spread) would otherwise clip the history's rounding error and
-/// pull a still pixel off its value, by differences the display cannot show.
+/// value alone, less blur than the centre, but still a blur (all measured, docs/frame.md "Temporal resolve").
+/// Inside the box the history is kept unchanged. The box is at least half an 8-bit display step wide on every
+/// side: a flat channel (zero spread) would otherwise clip the history's rounding error and pull a still pixel
+/// off its value, by differences the display cannot show.
 EMCV_FN vec3 emcv_resolve_clip(EMCV_IN(vec3) history, EMCV_IN(vec3) target, EMCV_IN(vec3) lo, EMCV_IN(vec3) hi) {
     vec3 centre = 0.5f * (lo + hi);
     vec3 extent = max(0.5f * (hi - lo), vec3(0.5f / 255.0f));
