@@ -1,0 +1,149 @@
+#!/usr/bin/python3
+# SPDX-License-Identifier: MIT
+"""cv's allocation after a light change: as built, with the light's change counted as the estimate's bias, and
+with every history restarted at the change (docs/renderer.md, "After a change: the stale allocation").
+
+After a light change a pixel's per-sample variance still holds the old light's noise, which its exponential
+memory forgets at 1 - eta = 0.8 a frame, and the budget keeps following it. Each variant is the shaders of this
+tree with a text replacement in shaders/adaptive/samples.comp.glsl (a copy read through EMCV_SHADER_DIR; the
+script refuses when an anchor is no longer in the shader):
+
+- as built: the pooled variance shrunk by its effective frames (emcv_history_shrink_sigma2).
+- light-change bias: under the model "a pixel's noise follows its light", a history measured under the light
+  mu_G and spent under this frame's G is off by the relative amount delta = (G / mu_G)^2 - 1 (G and mu_G
+  in the tracked display gamma, where the noise of a light scaled by k scales by k as G does). The pool's bias
+  (the mean of its pixels' delta) enters the estimate's relative mean squared error beside its sampling variance,
+  r / K + delta^2, i.e. the shrinkage weighs 1 / (1 / K + delta^2 / r) frames. No constant is chosen: delta is 0
+  wherever the light is still, so still scenes render bit for bit as built. delta is capped at 1000 (a light
+  switched on where mu_G was 0).
+- restarted at the change (an oracle: it knows the frame): every history starts fresh at frame CHANGE_FRAME,
+  the first change of each scene that has one there; for scenes without a change at that frame it is left out.
+
+Cells are cv - burley-B in dB over the window of each row (the raw display image against the reference, the mean
+over frames of each frame's dB), the mean over the seeds; 96x96, --resolve none, --spp-budget B. burley-B does
+not read the adaptive shaders and runs once per scene, budget and seed.
+
+Usage: /usr/bin/python3 scripts/eval/stale_allocation.py [--build build] [--seeds 1,2] [--write-doc]
+With --write-doc the table replaces the GENERATED block "stale-allocation" of docs/renderer.md.
+"""
+import argparse
+import csv
+import os
+import subprocess
+import sys
+import tempfile
+from concurrent.futures import ThreadPoolExecutor
+
+from adaptive_overhead import make_variant
+from run_eval import publish_table
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+SAMPLES = "adaptive/samples.comp.glsl"
+CHANGE_FRAME = 30
+SIZE = "96x96"
+BUDGETS = (8, 16)
+
+# The light-change bias: each pixel's delta from its kept history's mean of G and this frame's G, pooled as the
+# 3x3 mean over the pixels that have a variance, squared, added to the relative error r / K of the pooled estimate.
+BIAS = [
+    (SAMPLES, "shared float tile_frames[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];  // effective frames of each variance\n",
+     "shared float tile_frames[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];  // effective frames of each variance\n"
+     "shared float tile_bias[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];\nfloat own_bias = 0.0f;\n"),
+    (SAMPLES, "    frames = emcv_adaptive_effective_frames(s);\n",
+     "    frames = emcv_adaptive_effective_frames(s);\n"
+     "    if (s.count >= 2u) {\n"
+     "        float now = emcv_adaptive_tracked(p, texelFetch(lit_diffuse, p, 0).xyz);\n"
+     "        if (s.mean.y > 1e-6f) own_bias = min((now / s.mean.y) * (now / s.mean.y) - 1.0f, 1e3f);\n"
+     "        else if (now > 1e-6f) own_bias = 1e3f;\n"
+     "    }\n"),
+    (SAMPLES, "    float inverse_frames = 0.0f;\n", "    float inverse_frames = 0.0f;\n    float bias_sum = 0.0f;\n"),
+    (SAMPLES, "            emcv_history_pool_add(sum, count, tile_sigma2[i]);\n",
+     "            emcv_history_pool_add(sum, count, tile_sigma2[i]);\n"
+     "            if (tile_sigma2[i] >= 0.0f) bias_sum += tile_bias[i];\n"),
+    (SAMPLES, "        emcv_budget_add_raw(sigma2, frames);\n",
+     "        emcv_budget_add_raw(sigma2, frames);\n"
+     "        float bias = count > 0u ? bias_sum / float(count) : 0.0f;\n"
+     "        if (frames > 0.0f) frames = 1.0f / (1.0f / frames + bias * bias / emcv_history_spend_relative_variance());\n"),
+    (SAMPLES, "    tile_frames[here] = frames;\n", "    tile_frames[here] = frames;\n    tile_bias[here] = own_bias;\n"),
+]
+RESTART = [
+    (SAMPLES, "    if (emcv_adaptive_reproject(p, code, a, b, s, resampled) && !resampled) {\n",
+     f"    if (frame.counters.x == {CHANGE_FRAME}u) {{\n        s = emcv_adaptive_init();\n"
+     "        emcv_adaptive_store(p, s);\n    } else if (emcv_adaptive_reproject(p, code, a, b, s, resampled) && !resampled) {\n"),
+]
+VARIANTS = [("as built", []), ("light-change bias", BIAS), ("restarted at the change (oracle)", RESTART)]
+
+# (scene file under demo/scenes, frames, window (first, last) averaged, change at CHANGE_FRAME, window name)
+CASES = [
+    ("light-off.json", 60, (30, 59), True, "30 after the switch"),
+    ("variations/long-off.json", 330, (60, 329), True, "frames 60-329"),
+    ("variations/switch-half.json", 60, (30, 59), True, "30 after the switch"),
+    ("variations/switch-dim.json", 60, (30, 59), True, "30 after the switch"),
+    ("variations/switch-on.json", 60, (30, 59), True, "30 after the switch"),
+    ("variations/burst-1.json", 60, (30, 59), True, "30 from the burst"),
+    ("variations/burst-3.json", 60, (30, 59), True, "30 from the burst"),
+    ("variations/camera-switch.json", 60, (30, 59), True, "30 after the switch"),
+    ("variations/fade.json", 51, (21, 50), False, "30 from the fade's start"),
+    ("flicker.json", 72, (10, 71), False, "frames 10-71"),
+    ("moving.json", 60, (10, 59), False, "frames 10-59"),
+    ("validation/skin-close.json", 60, (30, 59), True, "30 after the switch"),
+    ("validation/skin-orbit.json", 60, (30, 59), True, "30 after the switch"),
+]
+
+
+def run(build, shader_dir, scene, frames, budget, seed, method, out):
+    cmd = [os.path.join(build, "bin", "emcv-demo"), "--scene", os.path.join(ROOT, "demo", "scenes", scene), "--size",
+           SIZE, "--frames", str(frames), "--method", method, "--spp-budget", str(budget), "--seed", str(seed),
+           "--resolve", "none", "--no-frames", "--out", out]
+    done = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, EMCV_SHADER_DIR=shader_dir))
+    if done.returncode != 0:
+        sys.exit(f"stale_allocation.py: {' '.join(cmd)} failed:\n{done.stderr}")
+    with open(os.path.join(out, "metrics.csv")) as f:
+        return {int(r["frame"]): float(r["psnr_db"]) for r in csv.DictReader(f)}
+
+
+def main(argv):
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("--build", default=os.path.join(ROOT, "build"))
+    p.add_argument("--seeds", default="1,2")
+    p.add_argument("--jobs", type=int, default=2)
+    p.add_argument("--write-doc", action="store_true", help="replace the stale-allocation block of docs/renderer.md")
+    a = p.parse_args(argv)
+    seeds = [int(s) for s in a.seeds.split(",")]
+    with tempfile.TemporaryDirectory() as tmp:
+        dirs = {name: make_variant(os.path.join(tmp, f"v{i}"), edits) for i, (name, edits) in enumerate(VARIANTS)}
+        jobs = []
+        for k, (scene, frames, _, change, _) in enumerate(CASES):
+            for budget in BUDGETS:
+                for seed in seeds:
+                    jobs.append((k, budget, seed, f"burley-{budget}", "as built"))
+                    jobs.extend((k, budget, seed, "cv", name) for name, _ in VARIANTS if change or name != VARIANTS[2][0])
+
+        def one(i):
+            k, budget, seed, method, name = jobs[i]
+            scene, frames = CASES[k][0], CASES[k][1]
+            return run(a.build, dirs[name], scene, frames, budget, seed, method, os.path.join(tmp, f"out{i}"))
+
+        with ThreadPoolExecutor(a.jobs) as pool:
+            psnr = dict(zip(jobs, pool.map(one, range(len(jobs)))))
+    lines = ["| scene | window | B | " + " | ".join(n for n, _ in VARIANTS) + " |", "|---|---|---:|" + "---:|" * len(VARIANTS)]
+    for k, (scene, frames, (first, last), change, window) in enumerate(CASES):
+        for budget in BUDGETS:
+            cells = []
+            for name, _ in VARIANTS:
+                if not change and name == VARIANTS[2][0]:
+                    cells.append("-")
+                    continue
+                gaps = []
+                for seed in seeds:
+                    cv, burley = psnr[(k, budget, seed, "cv", name)], psnr[(k, budget, seed, f"burley-{budget}", "as built")]
+                    gaps.append(sum(cv[f] - burley[f] for f in range(first, last + 1)) / (last - first + 1))
+                cells.append(f"{sum(gaps) / len(gaps):+.2f}")
+            name = os.path.basename(scene).replace(".json", "")
+            lines.append(f"| {name} | {window} | {budget} | " + " | ".join(cells) + " |")
+    publish_table("\n".join(lines), a.write_doc, os.path.join(ROOT, "docs", "renderer.md"), "stale-allocation",
+                  "scripts/eval/stale_allocation.py", argv)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
