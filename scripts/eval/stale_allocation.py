@@ -99,7 +99,7 @@ def run(build, shader_dir, scene, frames, budget, seed, method, out):
     if done.returncode != 0:
         sys.exit(f"stale_allocation.py: {' '.join(cmd)} failed:\n{done.stderr}")
     with open(os.path.join(out, "metrics.csv")) as f:
-        return {int(r["frame"]): float(r["psnr_db"]) for r in csv.DictReader(f)}
+        return {int(r["frame"]): float(r["psnr_db"]) for r in csv.DictReader(f) if r["method"] == method}
 
 
 def main(argv):
