@@ -1,23 +1,27 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: MIT
-"""cv's allocation after a light change: as built, with the light's change counted as the estimate's bias, and
-with every history restarted at the change (docs/renderer.md, "After a change: the stale allocation").
+"""cv's allocation after a light change: without the level's bias, as built, with the pixel's light's change
+counted too, and with every history restarted at the change (docs/renderer.md, "After a change: the stale
+allocation").
 
 After a light change a pixel's per-sample variance still holds the old light's noise, which its exponential
-memory forgets at 1 - eta = 0.8 a frame, and the budget keeps following it. Each variant is the shaders of this
-tree with a text replacement in shaders/adaptive/samples.comp.glsl (a copy read through EMCV_SHADER_DIR; the
-script refuses when an anchor is no longer in the shader):
+memory forgets at 1 - eta = 0.8 a frame, and the budget keeps following it. Each variant is this tree with a text
+replacement in include/emcv/port/history.h (a copy read through EMCV_INCLUDE_DIR) or in
+shaders/adaptive/samples.comp.glsl (through EMCV_SHADER_DIR); the script refuses when an anchor is no longer there:
 
-- as built: the pooled variance shrunk by its effective frames (emcv_history_shrink_sigma2).
-- light-change bias: under the model "a pixel's noise follows its light", a history measured under the light
-  mu_G and spent under this frame's G is off by the relative amount delta = (G / mu_G)^2 - 1 (G and mu_G
-  in the tracked display gamma, where the noise of a light scaled by k scales by k as G does). The pool's bias
-  (the mean of its pixels' delta) enters the estimate's relative mean squared error beside its sampling variance,
-  r / K + delta^2, i.e. the shrinkage weighs 1 / (1 / K + delta^2 / r) frames. No constant is chosen: delta is 0
-  wherever the light is still, so still scenes render bit for bit as built. delta is capped at 1000 (a light
-  switched on where mu_G was 0).
-- restarted at the change (an oracle: it knows the frame): every history starts fresh at frame CHANGE_FRAME,
-  the first change of each scene that has one there; for scenes without a change at that frame it is left out.
+- without the level's bias: cv's push never lowers the count (the rule before the level's bias was built).
+- as built: where f's level moves beyond 5 sigma, the push lowers the history's count to the frames its level's
+  bias leaves (emcv_history_push_cv, emcv_history_level_bias), and the budget's shrinkage weighs it by them.
+- + the pixel's light: as built, and also, under the model "a pixel's noise follows its light", a history
+  measured under the light mu_G and spent under this frame's G is off by the relative amount
+  delta = (G / mu_G)^2 - 1 (G and mu_G in the tracked display gamma, where the noise of a light scaled by k scales
+  by k as G does). The pool's bias (the mean of its pixels' delta) enters the estimate's relative mean squared
+  error beside its sampling variance, r / K + delta^2, i.e. the shrinkage weighs 1 / (1 / K + delta^2 / r)
+  frames. Unlike the level's bias it is known before the frame is sampled (G is this frame's). delta is 0
+  wherever the light is still; it is capped at 1000 (a light switched on where mu_G was 0).
+- restarted at the change (an oracle: it knows the frame): as built, and every history starts fresh at frame
+  CHANGE_FRAME, the first change of each scene that has one there; for scenes without a change at that frame it
+  is left out.
 
 Cells are cv - burley-B in dB over the window of each row (the raw display image against the reference, the mean
 over frames of each frame's dB), the mean over the seeds; 96x96, --resolve none, --spp-budget B. burley-B does
@@ -34,11 +38,14 @@ import sys
 import tempfile
 from concurrent.futures import ThreadPoolExecutor
 
+import shutil
+
 from adaptive_overhead import make_variant
 from run_eval import publish_table
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SAMPLES = "adaptive/samples.comp.glsl"
+HISTORY = "emcv/port/history.h"
 CHANGE_FRAME = 30
 SIZE = "96x96"
 BUDGETS = (8, 16)
@@ -71,7 +78,12 @@ RESTART = [
      f"    if (frame.counters.x == {CHANGE_FRAME}u) {{\n        s = emcv_adaptive_init();\n"
      "        emcv_adaptive_store(p, s);\n    } else if (emcv_adaptive_reproject(p, code, a, b, s, resampled) && !resampled) {\n"),
 ]
-VARIANTS = [("as built", []), ("light-change bias", BIAS), ("restarted at the change (oracle)", RESTART)]
+NO_LEVEL_BIAS = [(HISTORY, "        s.count = emcv_history_count_for_frames(s.count, eta, trusted);\n",
+                  "")]
+# (name, shader edits, include edits)
+VARIANTS = [("without the level's bias", [], NO_LEVEL_BIAS), ("as built", [], []), ("+ the pixel's light", BIAS, []),
+            ("restarted at the change (oracle)", RESTART, [])]
+ORACLE = VARIANTS[3][0]
 
 # (scene file under demo/scenes, frames, window (first, last) averaged, change at CHANGE_FRAME, window name)
 CASES = [
@@ -91,11 +103,29 @@ CASES = [
 ]
 
 
-def run(build, shader_dir, scene, frames, budget, seed, method, out):
+def make_include_variant(root, edits):
+    """The include directory with `edits` applied to a copy under root (this tree's include/ without edits)."""
+    if not edits:
+        return os.path.join(ROOT, "include")
+    shutil.copytree(os.path.join(ROOT, "include"), root)
+    for file, anchor, replacement in edits:
+        path = os.path.join(root, file)
+        with open(path) as f:
+            text = f.read()
+        if text.count(anchor) != 1:
+            sys.exit(f"stale_allocation.py: the anchor of a variant is not (once) in include/{file}: {anchor!r}")
+        with open(path, "w") as f:
+            f.write(text.replace(anchor, replacement))
+    return root
+
+
+def run(build, dirs, scene, frames, budget, seed, method, out):
+    shader_dir, include_dir = dirs
     cmd = [os.path.join(build, "bin", "emcv-demo"), "--scene", os.path.join(ROOT, "demo", "scenes", scene), "--size",
            SIZE, "--frames", str(frames), "--method", method, "--spp-budget", str(budget), "--seed", str(seed),
            "--resolve", "none", "--no-frames", "--out", out]
-    done = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, EMCV_SHADER_DIR=shader_dir))
+    done = subprocess.run(cmd, capture_output=True, text=True,
+                          env=dict(os.environ, EMCV_SHADER_DIR=shader_dir, EMCV_INCLUDE_DIR=include_dir))
     if done.returncode != 0:
         sys.exit(f"stale_allocation.py: {' '.join(cmd)} failed:\n{done.stderr}")
     with open(os.path.join(out, "metrics.csv")) as f:
@@ -111,13 +141,14 @@ def main(argv):
     a = p.parse_args(argv)
     seeds = [int(s) for s in a.seeds.split(",")]
     with tempfile.TemporaryDirectory() as tmp:
-        dirs = {name: make_variant(os.path.join(tmp, f"v{i}"), edits) for i, (name, edits) in enumerate(VARIANTS)}
+        dirs = {name: (make_variant(os.path.join(tmp, f"v{i}"), shaders), make_include_variant(os.path.join(tmp, f"i{i}"), includes))
+                for i, (name, shaders, includes) in enumerate(VARIANTS)}
         jobs = []
         for k, (scene, frames, _, change, _) in enumerate(CASES):
             for budget in BUDGETS:
                 for seed in seeds:
                     jobs.append((k, budget, seed, f"burley-{budget}", "as built"))
-                    jobs.extend((k, budget, seed, "cv", name) for name, _ in VARIANTS if change or name != VARIANTS[2][0])
+                    jobs.extend((k, budget, seed, "cv", name) for name, _, _ in VARIANTS if change or name != ORACLE)
 
         def one(i):
             k, budget, seed, method, name = jobs[i]
@@ -126,12 +157,12 @@ def main(argv):
 
         with ThreadPoolExecutor(a.jobs) as pool:
             psnr = dict(zip(jobs, pool.map(one, range(len(jobs)))))
-    lines = ["| scene | window | B | " + " | ".join(n for n, _ in VARIANTS) + " |", "|---|---|---:|" + "---:|" * len(VARIANTS)]
+    lines = ["| scene | window | B | " + " | ".join(n for n, _, _ in VARIANTS) + " |", "|---|---|---:|" + "---:|" * len(VARIANTS)]
     for k, (scene, frames, (first, last), change, window) in enumerate(CASES):
         for budget in BUDGETS:
             cells = []
-            for name, _ in VARIANTS:
-                if not change and name == VARIANTS[2][0]:
+            for name, _, _ in VARIANTS:
+                if not change and name == ORACLE:
                     cells.append("-")
                     continue
                 gaps = []

@@ -381,8 +381,11 @@ TEST_CASE("the GPU history equals the C++ estimators fed the same per-pixel valu
             previous = now;
         }
         CHECK(compared == 12 * int(pixels));
-        // Pixel 5 took no samples on the frames where (15 + frame) % 7 == 0 (frames 6): 11 pushes in 12 frames.
-        CHECK((k == kind::cv ? previous[5].a.w : previous[5].a.z) == 11.0f);
+        // Pixel 5 took no samples on the frames where (15 + frame) % 7 == 0 (frames 6): 11 pushes in 12 frames
+        // (cv's count may also be lowered by a 5-sigma move of f's level; there the frame-by-frame comparison
+        // with the C++ push above is the check).
+        if (k == kind::cv) CHECK(previous[5].a.w <= 11.0f);
+        else CHECK(previous[5].a.z == 11.0f);
     }
     CHECK(messenger.error_count() == 0);
 }

@@ -18,6 +18,18 @@
 //            is one frame's noise short, a deficit that fades as new frames come in: over the following frames
 //            the pixel mean stays between (1 - eta) and 1 times the estimate before the step, within 6 of its
 //            relative standard deviations sqrt(eta / (2 - eta) 2 / P) (1.5% at eta 0.2), and never rises.
+//   the level's bias  a step the control explains still moves f's level; where f moves beyond 5 sigma
+//            (N (f - mu_f)^2 > 25 sigma^2) the variance the history holds was measured at the old level and is off
+//            by delta = (f^2 - sigma^2 / N) / mu_f^2 - 1 relatively. The estimate's relative mean squared error is
+//            then r / K + delta^2 (r = 2 + (kurtosis - 3) / N, one frame's, at the port's kurtosis 9.36; K the
+//            effective frames (1 - a^m)(1 + a) / (eta (1 + a^m)), a = 1 - eta, m = count - 1), worth
+//            K' = r / (r / K + delta^2) frames, and the count is lowered to the largest count >= 2 whose K is at most
+//            K'. Each pixel's count is computed here in double with std::pow. A step by 1.3 moves f by 6 sigma /
+//            sqrt(N): with its noise, z ~ N(6, 1) passes 5 on about 84% of the pixels (fewer with sigma^2's own
+//            noise; more than half), and there delta ~ 0.69 and K' ~ 3.6 from K ~ 9: counts near 4, up to 10 where a
+//            pixel's low sigma^2 lets a smaller move pass (one pixel's estimate varies by ~47%). A step by
+//            1.05 moves f by 1 sigma / sqrt(N): z ~ N(1, 1) passes 5 with probability 3e-5, on a handful of pixels
+//            at most. Every pixel under the test keeps the count its push gives (201).
 #include <catch2/catch_test_macros.hpp>
 
 #include <algorithm>
@@ -137,6 +149,51 @@ TEST_CASE("cv's update: a step of f and G by the same factor (f = alpha G) leave
     INFO("the 20 frames after: mean sigma^2 / before in [" << lowest << ", " << highest << "], scatter " << scatter);
     CHECK(lowest >= (1 - eta) * (1 - scatter));
     CHECK(highest <= 1 + scatter);
+}
+
+TEST_CASE("cv's update: a step the control explains lowers the count to the frames its level's bias leaves") {
+    for (const double factor : {1.3, 1.05}) {
+        stream st;
+        for (int t = 0; t < warm_up; ++t) st.frame(g_before, 0.0);
+        const double eta = emcv::sampling_eta(st.p), a = 1 - eta;
+        const std::vector<emcv::port::EmcvEmcm2> before = st.states;
+        const std::vector<float> sigma2 = st.sigma2();
+        st.frame(factor * g_before, 0.0);  // f = alpha G with G scaled: the control explains the step
+        const double r = 2 + (9.36 - 3) / n_samples;
+        const auto frames = [eta, a](double count) {
+            const double am = std::pow(a, count - 1);
+            return (1 - am) * (1 + a) / (eta * (1 + am));
+        };
+        std::size_t lowered = 0, mismatched = 0, near_tie = 0;
+        double lowest_count = 1e30, highest_lowered = 0;
+        for (std::size_t i = 0; i < pixels; ++i) {
+            const double mu = before[i].mean.x, f = st.f[i], v = sigma2[i];
+            double expected = double(before[i].count) + 1;  // the push's own frame
+            if (n_samples * (f - mu) * (f - mu) > 25 * v) {
+                const double delta = std::max(f * f - v / n_samples, 0.0) / (mu * mu) - 1;
+                const double trusted = r / (r / frames(expected) + delta * delta);
+                double c = 2;
+                while (c + 1 < expected && frames(c + 1) <= trusted) c += 1;
+                if (std::fabs(frames(c + 1) / trusted - 1) < 1e-4 || std::fabs(frames(c) / trusted - 1) < 1e-4) ++near_tie;
+                expected = c;
+                ++lowered;
+                highest_lowered = std::max(highest_lowered, double(st.states[i].count));
+            }
+            if (double(st.states[i].count) != expected) ++mismatched;
+            lowest_count = std::min(lowest_count, double(st.states[i].count));
+        }
+        INFO("step by " << factor << ": " << lowered << " of " << pixels << " pixels past 5 sigma, counts from "
+                        << lowest_count << ", at most " << highest_lowered << " where lowered, " << mismatched << " off the derivation ("
+                        << near_tie << " within float rounding of a tie)");
+        CHECK(mismatched <= near_tie);
+        CHECK(lowest_count >= 2);
+        if (factor > 1.2) {
+            CHECK(lowered > pixels / 2);
+            CHECK(highest_lowered <= 10);  // K' ~ 3.6 (more where a low sigma^2 passes a smaller move): a handful
+        } else {
+            CHECK(lowered <= 4);
+        }
+    }
 }
 
 TEST_CASE("a batch push whose (1 - r) n d_f overflows keeps the cross comoment finite (fuzz finding)") {

@@ -210,30 +210,6 @@ EMCV_FN float emcv_history_predicted_alpha(EMCV_IN(EmcvEmcm2) s) {
 /// inequality noise of any distribution passes it at most 1 frame in 25 (a Gaussian once in 1.7 million).
 EMCV_FN float emcv_history_change_z2() { return 25.0f; }
 
-/// cv's update: f and G, the means of this frame's n samples, into the EMCM as a batch (supp. Eq. 21, 25-27).
-/// Once the history is as old as its memory (1 / eta frames, so that sigma^2 is an estimate worth testing
-/// against), a residual move e = (f - mu_f) - alpha (g - mu_G) with the predicted alpha beyond 5 sigma
-/// (n e^2 > 25 sigma^2) is a change the control does not explain: it enters with the weight of a 5-sigma move
-/// (n' = 25 sigma^2 / e^2), so a real rise of the noise still raises sigma^2 ((1 - eta)(1 + 25 eta unbias) per such
-/// frame: 5.3x at eta 0.2),
-/// and the means restart at (f, g), so that the frames after it are not read as noise for 1 / eta frames
-/// (docs/renderer.md, "Changes the control does not explain"). Returns false when f or g is not finite.
-EMCV_FN bool emcv_history_push_cv(EMCV_INOUT(EmcvEmcm2) s, float f, float g, float eta, float n) {
-    float sigma2 = emcv_history_sigma2_cv(s, eta);
-    bool mature = float(s.count) * eta >= 1.0f;
-    if (mature && sigma2 > 0.0f && emcv_emcm2_valid(s) && emcv_is_finite(f) && emcv_is_finite(g)) {
-        EMCV_PRECISE float e = (f - s.mean.x) - emcv_history_predicted_alpha(s) * (g - s.mean.y);
-        EMCV_PRECISE float z2 = n * e * e;
-        if (z2 > emcv_history_change_z2() * sigma2) {
-            EMCV_PRECISE float weight = emcv_history_change_z2() * sigma2 / (e * e);
-            emcv_emcm2_push_batch(s, vec2(f, g), eta, weight);
-            s.mean = vec2(f, g);
-            return true;
-        }
-    }
-    return emcv_emcm2_push_batch(s, vec2(f, g), eta, n);
-}
-
 /// Pooling, one neighbour: adds a neighbour's per-sample variance to the running sum when it has one (codes
 /// are skipped). Neighbours are visited row by row, dy then dx from -1 to 1, on the GPU and in C++.
 EMCV_FN void emcv_history_pool_add(EMCV_INOUT(float) sum, EMCV_INOUT(uint) count, float sigma2) {
@@ -292,6 +268,77 @@ EMCV_FN float emcv_history_effective_frames(uint count, float eta) {
 EMCV_FN float emcv_history_frame_relative_variance(float kurtosis, float n) {
     EMCV_PRECISE float r = 2.0f + (kurtosis - 3.0f) / n;
     return r;
+}
+
+/// The relative bias of a per-sample variance measured at the level mean_f when the level is now f (this frame's
+/// mean of n samples): noise that follows its light scales its variance with the level squared (in display gamma
+/// as in linear light), so the bias is E[f]^2 / mean_f^2 - 1, with E[f]^2 estimated without bias as
+/// f^2 - sigma2 / n. At least -1 (the level gone), at most 1000 (a level from 0, where mean_f is not normal).
+EMCV_FN float emcv_history_level_bias(float f, float mean_f, float sigma2, float n) {
+    if (!(mean_f > emcv_float_min_normal())) return f > emcv_float_min_normal() ? 1000.0f : 0.0f;
+    EMCV_PRECISE float level2 = max(f * f - sigma2 / n, 0.0f) / (mean_f * mean_f);
+    return min(level2 - 1.0f, 1000.0f);
+}
+
+/// The effective frames of an estimate resting on `frames` frames and off by the relative bias `bias`: its
+/// relative mean squared error is r / frames + bias^2 (r = emcv_history_frame_relative_variance, one frame's),
+/// that of r / (r / frames + bias^2) frames. `frames` itself when frames is 0 or bias is 0.
+EMCV_FN float emcv_history_biased_frames(float frames, float bias, float relative) {
+    if (!(frames > 0.0f)) return frames;
+    EMCV_PRECISE float inverse = 1.0f / frames + bias * bias / relative;
+    return 1.0f / inverse;
+}
+
+/// The largest count, at least 2 (a history with a variance) and at most `count`, whose effective frames
+/// (emcv_history_effective_frames, increasing in the count) are at most `frames`: bisection, pow-free (the same
+/// bits in C++ and on every GPU). `count` itself when it is under 2 or its frames are within `frames`; a count
+/// past EMCV_HISTORY_MAX_COUNT comes back at most at the cap.
+EMCV_FN uint emcv_history_count_for_frames(uint count, float eta, float frames) {
+    if (count < 2u || emcv_history_effective_frames(count, eta) <= frames) return count;
+    uint lo = 2u;  // answer >= lo
+    uint hi = min(count, EMCV_HISTORY_MAX_COUNT);  // frames(hi) > frames (the frames saturate at the cap)
+    for (uint k = 0u; k < 11u && hi - lo > 1u; ++k) {
+        uint mid = (lo + hi) / 2u;
+        if (emcv_history_effective_frames(mid, eta) <= frames) lo = mid; else hi = mid;
+    }
+    return lo;
+}
+
+/// cv's update: f and G, the means of this frame's n samples, into the EMCM as a batch (supp. Eq. 21, 25-27).
+/// Once the history is as old as its memory (1 / eta frames, so that sigma^2 is an estimate worth testing
+/// against), a residual move e = (f - mu_f) - alpha (g - mu_G) with the predicted alpha beyond 5 sigma
+/// (n e^2 > 25 sigma^2) is a change the control does not explain: it enters with the weight of a 5-sigma move
+/// (n' = 25 sigma^2 / e^2), so a real rise of the noise still raises sigma^2 ((1 - eta)(1 + 25 eta unbias) per such
+/// frame: 5.3x at eta 0.2),
+/// and the means restart at (f, g), so that the frames after it are not read as noise for 1 / eta frames
+/// (docs/renderer.md, "Changes the control does not explain"). A change the control does explain still moves the
+/// level: when f itself moves beyond 5 sigma in a history as old as its memory (n (f - mu_f)^2 > 25 sigma^2, Chebyshev as above), the variance the
+/// history holds was measured at the old level and is off by the relative bias emcv_history_level_bias; the
+/// count is lowered to the frames the estimate is then worth (emcv_history_biased_frames,
+/// emcv_history_count_for_frames), which the budget's shrinkage weighs it by (docs/renderer.md, "After a change:
+/// the stale allocation"). Returns false when f or g is not finite.
+EMCV_FN bool emcv_history_push_cv(EMCV_INOUT(EmcvEmcm2) s, float f, float g, float eta, float n) {
+    float sigma2 = emcv_history_sigma2_cv(s, eta);
+    bool mature = float(s.count) * eta >= 1.0f;
+    if (mature && sigma2 > 0.0f && emcv_emcm2_valid(s) && emcv_is_finite(f) && emcv_is_finite(g)) {
+        EMCV_PRECISE float e = (f - s.mean.x) - emcv_history_predicted_alpha(s) * (g - s.mean.y);
+        EMCV_PRECISE float z2 = n * e * e;
+        if (z2 > emcv_history_change_z2() * sigma2) {
+            EMCV_PRECISE float weight = emcv_history_change_z2() * sigma2 / (e * e);
+            emcv_emcm2_push_batch(s, vec2(f, g), eta, weight);
+            s.mean = vec2(f, g);
+            return true;
+        }
+    }
+    EMCV_PRECISE float mean_f = s.mean.x;
+    bool pushed = emcv_emcm2_push_batch(s, vec2(f, g), eta, n);
+    if (pushed && mature && sigma2 > 0.0f && n * (f - mean_f) * (f - mean_f) > emcv_history_change_z2() * sigma2) {
+        float bias = emcv_history_level_bias(f, mean_f, sigma2, n);
+        float trusted = emcv_history_biased_frames(emcv_history_effective_frames(s.count, eta), bias,
+                                                   emcv_history_frame_relative_variance(emcv_history_residual_kurtosis(), n));
+        s.count = emcv_history_count_for_frames(s.count, eta, trusted);
+    }
+    return pushed;
 }
 
 /// Pooling, one neighbour's effective frames: adds 1 / frames to the running sum when the neighbour has a
