@@ -61,16 +61,18 @@ VARIANTS = [
 ]
 
 
-def make_variant(root, edits):
+def make_variant(root, edits, source="shaders"):
+    """This tree's `source` folder (shaders/ or include/) with `edits` (file, anchor, replacement) applied to a
+    copy under root; the folder itself without edits. Exits when an anchor is not in its file exactly once."""
     if not edits:
-        return os.path.join(ROOT, "shaders")
-    shutil.copytree(os.path.join(ROOT, "shaders"), root)
+        return os.path.join(ROOT, source)
+    shutil.copytree(os.path.join(ROOT, source), root)
     for file, anchor, replacement in edits:
         path = os.path.join(root, file)
         with open(path) as f:
             text = f.read()
         if text.count(anchor) != 1:
-            sys.exit(f"{os.path.basename(sys.argv[0])}: the anchor of a variant is not (once) in shaders/{file}: {anchor!r}")
+            sys.exit(f"{os.path.basename(sys.argv[0])}: the anchor of a variant is not (once) in {source}/{file}: {anchor!r}")
         with open(path, "w") as f:
             f.write(text.replace(anchor, replacement))
     return root

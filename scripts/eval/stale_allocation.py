@@ -38,8 +38,6 @@ import sys
 import tempfile
 from concurrent.futures import ThreadPoolExecutor
 
-import shutil
-
 from adaptive_overhead import make_variant
 from run_eval import publish_table
 
@@ -103,22 +101,6 @@ CASES = [
 ]
 
 
-def make_include_variant(root, edits):
-    """The include directory with `edits` applied to a copy under root (this tree's include/ without edits)."""
-    if not edits:
-        return os.path.join(ROOT, "include")
-    shutil.copytree(os.path.join(ROOT, "include"), root)
-    for file, anchor, replacement in edits:
-        path = os.path.join(root, file)
-        with open(path) as f:
-            text = f.read()
-        if text.count(anchor) != 1:
-            sys.exit(f"stale_allocation.py: the anchor of a variant is not (once) in include/{file}: {anchor!r}")
-        with open(path, "w") as f:
-            f.write(text.replace(anchor, replacement))
-    return root
-
-
 def run(build, dirs, scene, frames, budget, seed, method, out):
     shader_dir, include_dir = dirs
     cmd = [os.path.join(build, "bin", "emcv-demo"), "--scene", os.path.join(ROOT, "demo", "scenes", scene), "--size",
@@ -141,7 +123,8 @@ def main(argv):
     a = p.parse_args(argv)
     seeds = [int(s) for s in a.seeds.split(",")]
     with tempfile.TemporaryDirectory() as tmp:
-        dirs = {name: (make_variant(os.path.join(tmp, f"v{i}"), shaders), make_include_variant(os.path.join(tmp, f"i{i}"), includes))
+        dirs = {name: (make_variant(os.path.join(tmp, f"v{i}"), shaders),
+                       make_variant(os.path.join(tmp, f"i{i}"), includes, "include"))
                 for i, (name, shaders, includes) in enumerate(VARIANTS)}
         jobs = []
         for k, (scene, frames, _, change, _) in enumerate(CASES):
