@@ -247,7 +247,8 @@ void update(const emcv::sampling_params& p, frame_state<State>& fs, input& in) {
         EMCV_FUZZ_ASSERT(s.rejected == old.rejected);
         const bool reseeded = old.count != 0u && !valid(old);
         EMCV_FUZZ_ASSERT(s.reseeded == old.reseeded + (reseeded ? 1u : 0u));
-        if (reseeded || p.estimator != emcv::sampling_estimator::cv || double(old.count) * double(emcv::sampling_eta(p)) < 1.0) {
+        const bool mature = double(old.count) * double(emcv::sampling_eta(p)) >= 1.0;
+        if (reseeded || p.estimator != emcv::sampling_estimator::cv || !mature) {
             EMCV_FUZZ_ASSERT(s.count == (reseeded ? 1u : old.count + 1u));
         } else {  // cv may lower a mature history's count where f's level moved (port::emcv_history_level_bias)
             EMCV_FUZZ_ASSERT(s.count >= 2u && s.count <= old.count + 1u);

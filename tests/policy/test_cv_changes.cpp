@@ -174,7 +174,8 @@ TEST_CASE("cv's update: a step the control explains lowers the count to the fram
                 const double trusted = r / (r / frames(expected) + delta * delta);
                 double c = 2;
                 while (c + 1 < expected && frames(c + 1) <= trusted) c += 1;
-                if (std::fabs(frames(c + 1) / trusted - 1) < 1e-4 || std::fabs(frames(c) / trusted - 1) < 1e-4) ++near_tie;
+                const bool tie = std::fabs(frames(c + 1) / trusted - 1) < 1e-4 || std::fabs(frames(c) / trusted - 1) < 1e-4;
+                if (tie) ++near_tie;
                 expected = c;
                 ++lowered;
                 highest_lowered = std::max(highest_lowered, double(st.states[i].count));
@@ -183,7 +184,8 @@ TEST_CASE("cv's update: a step the control explains lowers the count to the fram
             lowest_count = std::min(lowest_count, double(st.states[i].count));
         }
         INFO("step by " << factor << ": " << lowered << " of " << pixels << " pixels past 5 sigma, counts from "
-                        << lowest_count << ", at most " << highest_lowered << " where lowered, " << mismatched << " off the derivation ("
+                        << lowest_count << ", at most " << highest_lowered << " where lowered, " << mismatched
+                        << " off the derivation ("
                         << near_tie << " within float rounding of a tie)");
         CHECK(mismatched <= near_tie);
         CHECK(lowest_count >= 2);

@@ -312,11 +312,11 @@ EMCV_FN uint emcv_history_count_for_frames(uint count, float eta, float frames) 
 /// frame: 5.3x at eta 0.2),
 /// and the means restart at (f, g), so that the frames after it are not read as noise for 1 / eta frames
 /// (docs/renderer.md, "Changes the control does not explain"). A change the control does explain still moves the
-/// level: when f itself moves beyond 5 sigma in a history as old as its memory (n (f - mu_f)^2 > 25 sigma^2, Chebyshev as above), the variance the
-/// history holds was measured at the old level and is off by the relative bias emcv_history_level_bias; the
-/// count is lowered to the frames the estimate is then worth (emcv_history_biased_frames,
-/// emcv_history_count_for_frames), which the budget's shrinkage weighs it by (docs/renderer.md, "After a change:
-/// the stale allocation"). Returns false when f or g is not finite.
+/// level: when f itself moves beyond 5 sigma in a history as old as its memory (n (f - mu_f)^2 > 25 sigma^2,
+/// Chebyshev as above), the variance the history holds was measured at the old level and is off by the relative
+/// bias emcv_history_level_bias; the count is lowered to the frames the estimate is then worth
+/// (emcv_history_biased_frames, emcv_history_count_for_frames), which the budget's shrinkage weighs it by
+/// (docs/renderer.md, "After a change: the stale allocation"). Returns false when f or g is not finite.
 EMCV_FN bool emcv_history_push_cv(EMCV_INOUT(EmcvEmcm2) s, float f, float g, float eta, float n) {
     float sigma2 = emcv_history_sigma2_cv(s, eta);
     bool mature = float(s.count) * eta >= 1.0f;
@@ -330,12 +330,14 @@ EMCV_FN bool emcv_history_push_cv(EMCV_INOUT(EmcvEmcm2) s, float f, float g, flo
             return true;
         }
     }
-    EMCV_PRECISE float mean_f = s.mean.x;
+    float mean_f = s.mean.x;
+    EMCV_PRECISE float level_move = f - mean_f;
+    EMCV_PRECISE float level_z2 = n * level_move * level_move;
     bool pushed = emcv_emcm2_push_batch(s, vec2(f, g), eta, n);
-    if (pushed && mature && sigma2 > 0.0f && n * (f - mean_f) * (f - mean_f) > emcv_history_change_z2() * sigma2) {
+    if (pushed && mature && sigma2 > 0.0f && level_z2 > emcv_history_change_z2() * sigma2) {
         float bias = emcv_history_level_bias(f, mean_f, sigma2, n);
-        float trusted = emcv_history_biased_frames(emcv_history_effective_frames(s.count, eta), bias,
-                                                   emcv_history_frame_relative_variance(emcv_history_residual_kurtosis(), n));
+        float relative = emcv_history_frame_relative_variance(emcv_history_residual_kurtosis(), n);
+        float trusted = emcv_history_biased_frames(emcv_history_effective_frames(s.count, eta), bias, relative);
         s.count = emcv_history_count_for_frames(s.count, eta, trusted);
     }
     return pushed;
