@@ -15,8 +15,9 @@
 //              sampling_update  pushes the frame's output f (the mean of its N samples) and its control G
 //                           into the history as a batch of N (the comoments grow by N d d^T); cv's push is
 //                           robust (port::emcv_history_push_cv: a jump the control does not explain enters
-//                           with a 5-sigma weight and restarts the means; a 5-sigma move of f's level lowers
-//                           the count to the frames the variance measured at the old level is worth).
+//                           with a 5-sigma weight and restarts the means; an explained move that carries f's
+//                           level beyond 5 sigma lowers the count to the frames the variance measured at the
+//                           old level is worth).
 //            Every formula is the port's (include/emcv/port/history.h, budget.h, ema.h, cv.h), the code the
 //            GPU runs: this header only loops over pixels, in the order of shaders/adaptive/samples.comp.glsl
 //            and the burley pass's count and history update. budget_solve finds the lambda that the samples
@@ -165,9 +166,10 @@ float frames_of(const State& s, float eta) {
 /// the variance of one sample. spvg and cv-notex push f and f - G (port::emcv_moving_stats_push_batch); cv
 /// pushes the pair (f, G) through port::emcv_history_push_cv: once the history is 1 / eta frames old, a residual
 /// move beyond 5 sigma that G's move does not explain enters with the weight of a 5-sigma move and restarts
-/// the means at (f, G); where f's level moves beyond 5 sigma (explained or not), the count is lowered to the
-/// frames the variance measured at the old level is worth (port::emcv_history_level_bias). A pixel with taken[i] <= 0 learns nothing about its noise and is left as it is; a
-/// non-finite f or G is refused by the port (state unchanged, `rejected` + 1). g may be null for spvg only.
+/// the means at (f, G); where a move the control explains still carries f's level beyond 5 sigma, the count is
+/// lowered to the frames the variance measured at the old level is worth (port::emcv_history_level_bias). A
+/// pixel with taken[i] <= 0 learns nothing about its noise and is left as it is; a non-finite f or G is refused
+/// by the port (state unchanged, `rejected` + 1). g may be null for spvg only.
 /// Throws std::invalid_argument when the parameters are invalid, the state type is not the estimator's, or a
 /// needed array is null.
 template <class State>

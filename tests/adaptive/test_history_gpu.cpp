@@ -313,6 +313,14 @@ TEST_CASE("the GPU history equals the C++ estimators fed the same per-pixel valu
                 INFO("frame " << frame << " pixel " << i << " batch " << taken[i]);
                 const texel& was = previous[i];
                 const float batch = float(taken[i]);
+                if (batch == 0.0f) {  // no samples, nothing learnt: the state is kept bit for bit (no push)
+                    CHECK(bits(now[i].a.x) == bits(was.a.x));
+                    CHECK(bits(now[i].a.y) == bits(was.a.y));
+                    CHECK(bits(now[i].a.z) == bits(was.a.z));
+                    CHECK(bits(now[i].a.w) == bits(was.a.w));
+                    CHECK(bits(now[i].b.x) == bits(was.b.x));
+                    CHECK(bits(now[i].b.y) == bits(was.b.y));
+                }
                 if (k == kind::cv) {
                     // The count from the library's EMCM restored from the stored state (the GPU's decode).
                     emcv::emcm<float, 2>::state_type s{};
@@ -381,11 +389,10 @@ TEST_CASE("the GPU history equals the C++ estimators fed the same per-pixel valu
             previous = now;
         }
         CHECK(compared == 12 * int(pixels));
-        // Pixel 5 took no samples on the frames where (15 + frame) % 7 == 0 (frames 6): 11 pushes in 12 frames
-        // (cv's count may also be lowered by a 5-sigma move of f's level; there the frame-by-frame comparison
-        // with the C++ push above is the check).
-        if (k == kind::cv) CHECK(previous[5].a.w <= 11.0f);
-        else CHECK(previous[5].a.z == 11.0f);
+        // Pixel 5 took no samples on the frames where (15 + frame) % 7 == 0 (frames 6): 11 pushes in 12 frames.
+        // cv's count may also be lowered by a 5-sigma move of f's level (this stream's light switch lowers pixel
+        // 5's), so for cv the no-sample frames are checked above: the state kept bit for bit.
+        if (k != kind::cv) CHECK(previous[5].a.z == 11.0f);
     }
     CHECK(messenger.error_count() == 0);
 }

@@ -185,8 +185,7 @@ TEST_CASE("cv's update: a step the control explains lowers the count to the fram
         }
         INFO("step by " << factor << ": " << lowered << " of " << pixels << " pixels past 5 sigma, counts from "
                         << lowest_count << ", at most " << highest_lowered << " where lowered, " << mismatched
-                        << " off the derivation ("
-                        << near_tie << " within float rounding of a tie)");
+                        << " off the derivation (" << near_tie << " within float rounding of a tie)");
         CHECK(mismatched <= near_tie);
         CHECK(lowest_count >= 2);
         if (factor > 1.2) {
