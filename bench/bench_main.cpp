@@ -471,7 +471,7 @@ void register_policy(const char* name, emcv::sampling_estimator estimator, emcv:
             const auto start = std::chrono::steady_clock::now();
             const emcv::frame_plan plan = emcv::plan_frame(p, states.data(), pixels, width, nullptr, nullptr, frame++,
                                                            1u, sigma2.data(), n.data(), prior);
-            emcv::sampling_update(p, states.data(), pixels, f.data(), g.data(), n.data());
+            emcv::sampling_update(p, states.data(), pixels, width, nullptr, f.data(), g.data(), n.data());
             const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
             benchmark::DoNotOptimize(plan.samples);
             benchmark::ClobberMemory();

@@ -246,7 +246,7 @@ py::object plan_frame_py(const sampling_params_py& params, history_py& history, 
 }
 
 void sampling_update_py(const sampling_params_py& params, history_py& history, const py::object& f,
-                        const py::object& g, const py::object& counts) {
+                        const py::object& g, const py::object& counts, const py::object& material) {
     constexpr const char* where = "emcv.sampling_update";
     check_estimator(params, history, where);
     const std::size_t w = history.width(), h = history.height();
@@ -256,9 +256,12 @@ void sampling_update_py(const sampling_params_py& params, history_py& history, c
     else if (params.get().estimator != emcv::sampling_estimator::spvg)
         throw py::value_error(std::string(where) + ": g must be given for cv and cv_notex (None only for spvg)");
     const int* counts_data = checked<int>(counts, where, "counts", "int32", h, w);
+    const std::uint32_t* material_data =
+        material.is_none() ? nullptr : checked<std::uint32_t>(material, where, "material", "uint32", h, w);
     py::gil_scoped_release unlocked;
     history.visit([&](auto& states) {
-        emcv::sampling_update(params.get(), states.data(), history.pixels(), f_data, g_data, counts_data);
+        emcv::sampling_update(params.get(), states.data(), history.pixels(), w, material_data, f_data, g_data,
+                              counts_data);
     });
 }
 
@@ -376,10 +379,12 @@ PYBIND11_MODULE(emcv, m) {
           "the statistics of the history's previous plan_frame (kept in the History; none before its first) and "
           "this frame's replace them. Returns FramePlan(counts, sigma2, lambda_, samples).");
     m.def("sampling_update", &sampling_update_py, py::arg("params"), py::arg("history"), py::arg("f"), py::arg("g"),
-          py::arg("counts"),
+          py::arg("counts"), py::arg("material") = py::none(),
           "emcv::sampling_update: pushes each pixel's output f (float32, the mean of its counts[i] samples) and "
           "control g (float32; None for spvg only) into the history as a batch of counts[i] (int32); a pixel with "
-          "counts <= 0 is left as it is, a non-finite value is refused (its `rejected` count grows).");
+          "counts <= 0 or material 0 (uint32, as plan_frame's; None: every pixel scatters, one material) is left "
+          "as it is, a non-finite value is refused (its `rejected` count grows); cv's tile noise test pools over "
+          "the pixels of a material in each 8x8 tile.");
     m.def("budget_solve", &budget_solve_py, py::arg("params"), py::arg("sigma2"), py::arg("material") = py::none(),
           "emcv::budget_add + emcv::budget_solve: the budget's lambda over the scattering pixels of a (height, width) "
           "float32 sigma2 of variance codes (plan_frame's sigma2), with params.budget whatever params.mode is.");

@@ -17,7 +17,8 @@
 //                           robust (port::emcv_history_push_cv: a jump the control does not explain enters
 //                           with a 5-sigma weight and restarts the means; an explained move that carries f's
 //                           level beyond 5 sigma lowers the count to the frames the variance measured at the
-//                           old level is worth).
+//                           old level is worth), and where the residuals of a tile's pixels say the noise
+//                           fell, their comoments are scaled down by the ratio (the tile's noise test).
 //            Every formula is the port's (include/emcv/port/history.h, budget.h, ema.h, cv.h), the code the
 //            GPU runs: this header only loops over pixels, in the order of shaders/adaptive/samples.comp.glsl
 //            and the burley pass's count and history update. budget_solve finds the lambda that the samples
@@ -33,7 +34,8 @@
 //            std::vector<emcv::port::EmcvEmcm2> states(pixels, emcv::port::emcv_emcm2_init());
 //            emcv::plan_frame(p, states.data(), pixels, width, material.data(), nullptr, frame, seed, sigma2.data(),
 //                             n.data());
-//            ... render with n[i] samples ...;  emcv::sampling_update(p, states.data(), pixels, f, g, n.data());
+//            ... render with n[i] samples ...;
+//            emcv::sampling_update(p, states.data(), pixels, width, material.data(), f, g, n.data());
 // REFERENCES Xie & Olano 2021 (Eq. 29, 31; supp. Eq. 21, 25-27); SPVG 2020 (eta 0.2, target 1e-4, N <= 64).
 #pragma once
 
@@ -142,7 +144,7 @@ void check_state_read(const sampling_params& p, const State* states, std::size_t
     check_pixels(out, pixels, where, "out must not be null");
 }
 
-/// One pixel's push, as shaders/adaptive/update.comp.glsl (n > 0 only).
+/// One pixel's push, as the burley pass's history update (shaders/adaptive/history_io.h; n > 0 only).
 inline void push(const sampling_params&, float eta, port::EmcvEmcm2& s, float f, float g, float n) {
     port::emcv_history_push_cv(s, f, g, eta, n);
 }
@@ -160,6 +162,11 @@ float frames_of(const State& s, float eta) {
 
 }  // namespace detail
 
+/// The side of the pooling tiles: the renderer's SSS tiles and workgroups (EMCV_RENDER_TILE_SIZE in
+/// shaders/render/bindings.h), aligned at multiples of it from the image's pixel (0, 0). Neither the pooling nor
+/// cv's noise test reaches across a tile's edge.
+inline constexpr std::size_t sampling_tile_size = 8;
+
 /// Pushes each pixel's frame into its history, as the renderer's adaptive burley pass does after sampling: f is
 /// the pixel's output (the mean of the taken[i] samples it took), g its in-frame control G (both as the tracked scalar,
 /// e.g. gamma-space luminance); the push is a batch of taken[i] (supp. Eq. 25-27), so the history estimates
@@ -167,14 +174,20 @@ float frames_of(const State& s, float eta) {
 /// pushes the pair (f, G) through port::emcv_history_push_cv: once the history is 1 / eta frames old, a residual
 /// move beyond 5 sigma that G's move does not explain enters with the weight of a 5-sigma move and restarts
 /// the means at (f, G); where a move the control explains still carries f's level beyond 5 sigma, the count is
-/// lowered to the frames the variance measured at the old level is worth (port::emcv_history_level_bias). A
-/// pixel with taken[i] <= 0 learns nothing about its noise and is left as it is; a non-finite f or G is refused
-/// by the port (state unchanged, `rejected` + 1). g may be null for spvg only.
-/// Throws std::invalid_argument when the parameters are invalid, the state type is not the estimator's, or a
-/// needed array is null.
+/// lowered to the frames the variance measured at the old level is worth (port::emcv_history_level_bias).
+/// cv then runs the tile's noise test: each pixel's term before its push (port::emcv_history_noise_term) is
+/// pooled over the pixels of its material in its sampling_tile_size tile that took samples, in row order
+/// (port::emcv_history_noise_add), and where the pool says the noise fell, the pixel's comoments are scaled by
+/// the ratio (port::emcv_history_noise_ratio, port::emcv_history_rescale_cv) after its push.
+/// A pixel with taken[i] <= 0, or of material 0 (it does not scatter), learns nothing about its noise and is
+/// left as it is; a non-finite f or G is refused by the port (state unchanged, `rejected` + 1). The arrays hold
+/// `pixels` entries in rows of `width` (the image plan_frame planned); material may be null (every pixel
+/// scatters, one material); g may be null for spvg only.
+/// Throws std::invalid_argument when the parameters are invalid, the state type is not the estimator's, a
+/// needed array is null, or width is 0 or does not divide pixels.
 template <class State>
-void sampling_update(const sampling_params& p, State* states, std::size_t pixels, const float* f, const float* g,
-                     const int* taken) {
+void sampling_update(const sampling_params& p, State* states, std::size_t pixels, std::size_t width,
+                     const std::uint32_t* material, const float* f, const float* g, const int* taken) {
     constexpr const char* where = "emcv::sampling_update";
     check_sampling_params(p);
     detail::check_state_type<State>(p, where);
@@ -183,10 +196,44 @@ void sampling_update(const sampling_params& p, State* states, std::size_t pixels
     detail::check_pixels(taken, pixels, where, "taken must not be null");
     if (p.estimator != sampling_estimator::spvg)
         detail::check_pixels(g, pixels, where, "g must not be null for cv and cv_notex");
+    detail::require(width > 0 && pixels % width == 0, where, "width must be > 0 and divide the pixel count");
     const float eta = sampling_eta(p);
-    for (std::size_t i = 0; i < pixels; ++i) {
-        if (taken[i] <= 0) continue;
-        detail::push(p, eta, states[i], f[i], g != nullptr ? g[i] : 0.0f, static_cast<float>(taken[i]));
+    const auto pushes = [&](std::size_t i) { return taken[i] > 0 && (material == nullptr || material[i] != 0u); };
+    if constexpr (!std::is_same_v<State, port::EmcvEmcm2>) {
+        for (std::size_t i = 0; i < pixels; ++i)
+            if (pushes(i)) detail::push(p, eta, states[i], f[i], g != nullptr ? g[i] : 0.0f, static_cast<float>(taken[i]));
+    } else {
+        // One tile at a time, as the burley pass's workgroup: every term before any push of the tile.
+        constexpr std::size_t tile = sampling_tile_size;
+        const std::size_t height = pixels / width;
+        float term[tile * tile];
+        std::uint32_t code[tile * tile];
+        for (std::size_t y0 = 0; y0 < height; y0 += tile) {
+            for (std::size_t x0 = 0; x0 < width; x0 += tile) {
+                const std::size_t w = width - x0 < tile ? width - x0 : tile, h = height - y0 < tile ? height - y0 : tile;
+                for (std::size_t ly = 0; ly < h; ++ly)
+                    for (std::size_t lx = 0; lx < w; ++lx) {
+                        const std::size_t i = (y0 + ly) * width + x0 + lx, here = ly * tile + lx;
+                        code[here] = pushes(i) ? (material != nullptr ? material[i] : 1u) : 0u;
+                        term[here] = code[here] != 0u ? port::emcv_history_noise_term(states[i], f[i], g[i], eta,
+                                                                                      static_cast<float>(taken[i]))
+                                                      : port::emcv_history_no_variance();
+                    }
+                for (std::size_t ly = 0; ly < h; ++ly)
+                    for (std::size_t lx = 0; lx < w; ++lx) {
+                        const std::size_t i = (y0 + ly) * width + x0 + lx;
+                        if (code[ly * tile + lx] == 0u) continue;
+                        port::vec3 pool(0.0f);
+                        for (std::size_t qy = 0; qy < h; ++qy)
+                            for (std::size_t qx = 0; qx < w; ++qx)
+                                if (code[qy * tile + qx] == code[ly * tile + lx])
+                                    port::emcv_history_noise_add(pool, term[qy * tile + qx],
+                                                                 static_cast<float>(taken[(y0 + qy) * width + x0 + qx]));
+                        port::emcv_history_push_cv(states[i], f[i], g[i], eta, static_cast<float>(taken[i]));
+                        port::emcv_history_rescale_cv(states[i], port::emcv_history_noise_ratio(pool));
+                    }
+            }
+        }
     }
 }
 
@@ -218,9 +265,6 @@ void sampling_frames(const sampling_params& p, const State* states, std::size_t 
     for (std::size_t i = 0; i < pixels; ++i) out[i] = detail::frames_of(states[i], eta);
 }
 
-/// The side of the pooling tiles: the renderer's SSS tiles and workgroups (EMCV_RENDER_TILE_SIZE in
-/// shaders/render/bindings.h), aligned at multiples of it from the image's pixel (0, 0).
-inline constexpr std::size_t sampling_tile_size = 8;
 
 namespace detail {
 

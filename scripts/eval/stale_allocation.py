@@ -1,17 +1,22 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: MIT
-"""cv's allocation after a light change: without the level's bias, as built, with the pixel's light's change
-counted too, and with every history restarted at the change (docs/renderer.md, "After a change: the stale
-allocation").
+"""cv's allocation after a light change: without the level's bias and the tile's noise test, with the level's
+bias only, as built (both), with the pixel's light's change counted too, and with every history restarted at the
+change (docs/renderer.md, "After a change: the stale allocation").
 
 After a light change a pixel's per-sample variance still holds the old light's noise, which its exponential
 memory forgets at 1 - eta = 0.8 a frame, and the budget keeps following it. Each variant is this tree with a text
 replacement in include/emcv/port/history.h (a copy read through EMCV_INCLUDE_DIR) or in
 shaders/adaptive/samples.comp.glsl (through EMCV_SHADER_DIR); the script refuses when an anchor is no longer there:
 
-- without the level's bias: cv's push never lowers the count (the rule before the level's bias was built).
-- as built: where f's level moves beyond 5 sigma, the push lowers the history's count to the frames its level's
-  bias leaves (emcv_history_push_cv, emcv_history_level_bias), and the budget's shrinkage weighs it by them.
+- neither: cv's push never lowers the count and never rescales the comoments (the rule before either was built).
+- the level's bias: where f's level moves beyond 5 sigma, the push lowers the history's count to the frames its
+  level's bias leaves (emcv_history_push_cv, emcv_history_level_bias), and the budget's shrinkage weighs it by
+  them; no noise test (emcv_history_noise_ratio always 1).
+- as built: the level's bias and the tile's noise test: each pixel's n e^2 / sigma^2 before its push, averaged over
+  its 8x8 tile's pixels of its material, estimates the ratio of the noise now to the history's; where it says the
+  noise fell (beyond its sampling variance), the comoments are scaled by the ratio (emcv_history_noise_term,
+  emcv_history_noise_ratio, emcv_history_rescale_cv).
 - + the pixel's light: as built, and also, under the model "a pixel's noise follows its light", a history
   measured under the light mu_G and spent under this frame's G is off by the relative amount
   delta = (G / mu_G)^2 - 1 (G and mu_G in the tracked display gamma, where the noise of a light scaled by k scales
@@ -78,13 +83,18 @@ RESTART = [
 ]
 NO_LEVEL_BIAS = [(HISTORY, "        s.count = emcv_history_count_for_frames(s.count, eta, trusted);\n",
                   "")]
+NO_NOISE_TEST = [(HISTORY, "    if (!(pool.z > 0.0f)) return 1.0f;\n    EMCV_PRECISE float z = pool.x / pool.z;\n",
+                  "    return 1.0f;\n    EMCV_PRECISE float z = pool.x / pool.z;\n")]
 # (name, shader edits, include edits)
-VARIANTS = [("without the level's bias", [], NO_LEVEL_BIAS), ("as built", [], []), ("+ the pixel's light", BIAS, []),
+VARIANTS = [("neither", [], NO_LEVEL_BIAS + NO_NOISE_TEST), ("the level's bias", [], NO_NOISE_TEST),
+            ("as built: + the tile's noise test", [], []), ("+ the pixel's light", BIAS, []),
             ("restarted at the change (oracle)", RESTART, [])]
-ORACLE = VARIANTS[3][0]
+ORACLE = VARIANTS[-1][0]
+BUILT = VARIANTS[2][0]  # burley-B reads no adaptive shader: it runs once, under this variant
 
 # (scene file under demo/scenes, frames, window (first, last) averaged, change at CHANGE_FRAME, window name)
 CASES = [
+    ("static.json", 60, (10, 59), False, "frames 10-59"),
     ("light-off.json", 60, (30, 59), True, "30 after the switch"),
     ("variations/long-off.json", 330, (60, 329), True, "frames 60-329"),
     ("variations/switch-half.json", 60, (30, 59), True, "30 after the switch"),
@@ -130,7 +140,7 @@ def main(argv):
         for k, (scene, frames, _, change, _) in enumerate(CASES):
             for budget in BUDGETS:
                 for seed in seeds:
-                    jobs.append((k, budget, seed, f"burley-{budget}", "as built"))
+                    jobs.append((k, budget, seed, f"burley-{budget}", BUILT))
                     jobs.extend((k, budget, seed, "cv", name) for name, _, _ in VARIANTS if change or name != ORACLE)
 
         def one(i):
@@ -150,7 +160,7 @@ def main(argv):
                     continue
                 gaps = []
                 for seed in seeds:
-                    cv, burley = psnr[(k, budget, seed, "cv", name)], psnr[(k, budget, seed, f"burley-{budget}", "as built")]
+                    cv, burley = psnr[(k, budget, seed, "cv", name)], psnr[(k, budget, seed, f"burley-{budget}", BUILT)]
                     gaps.append(sum(cv[f] - burley[f] for f in range(first, last + 1)) / (last - first + 1))
                 cells.append(f"{sum(gaps) / len(gaps):+.2f}")
             name = os.path.basename(scene).replace(".json", "")

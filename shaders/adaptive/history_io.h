@@ -120,29 +120,51 @@ float emcv_adaptive_tracked(ivec2 p, vec3 irradiance) {
     return emcv_gamma_luminance(albedo * irradiance * frame.background.w);
 }
 
-/// The history update of SSS pixel p once its samples are taken (the burley pass runs it after its sampling
-/// loop): pushes this frame's values as the mean of the n samples the pixel took (include/emcv/port/ema.h,
-/// *_push_batch: the history estimates the per-sample variance, supp. Eq. 25-27). f = the scattered diffuse
-/// as stored for display, G = the unscattered diffuse (in-frame constant control), both tracked as displayed
-/// gamma-space luminance (emcv_adaptive_tracked).
-///   spvg      moving mean/variance of f (eta 0.2)
-///   cv        EMCM over (f, G) (eta 0.2), a change the control does not explain clipped (emcv_history_push_cv)
-///   cv-notex  moving mean/variance of r = f - G (alpha = 1, eta 0.2)
-/// A pixel that took no samples learns nothing about its noise and is not pushed. A non-finite f or G is
-/// refused by the port (state unchanged); a poisoned stored state is reset, never used.
-void emcv_adaptive_update(ivec2 p, vec3 scattered, vec3 unscattered, uint n) {
-    if (n == 0u) return;
+/// The history state of SSS pixel p as this frame's samples pass left it (a poisoned texel decodes as a fresh
+/// state).
+EmcvAdaptiveState emcv_adaptive_load(ivec2 p) {
 #if defined(EMCV_ADAPTIVE_CV)
     vec4 b = imageLoad(history_b, p);
 #else
     vec4 b = vec4(0.0f);
 #endif
     EmcvAdaptiveState s;
-    emcv_adaptive_decode(imageLoad(history_a, p), b, s);  // a poisoned texel decodes as a fresh state
+    emcv_adaptive_decode(imageLoad(history_a, p), b, s);
+    return s;
+}
+
+/// cv's noise-test term of SSS pixel p before its push (emcv_history_noise_term, the tracked f and G as the
+/// update reads them); emcv_history_no_variance() for the other methods and for a pixel that took no samples.
+float emcv_adaptive_noise_term(ivec2 p, vec3 scattered, vec3 unscattered, uint n) {
+#if defined(EMCV_ADAPTIVE_CV)
+    if (n == 0u) return emcv_history_no_variance();
+    return emcv_history_noise_term(emcv_adaptive_load(p), emcv_adaptive_tracked(p, scattered),
+                                   emcv_adaptive_tracked(p, unscattered), EMCV_HISTORY_ETA_EMCM, float(n));
+#else
+    return emcv_history_no_variance();
+#endif
+}
+
+/// The history update of SSS pixel p once its samples are taken (the burley pass runs it after its sampling
+/// loop): pushes this frame's values as the mean of the n samples the pixel took (include/emcv/port/ema.h,
+/// *_push_batch: the history estimates the per-sample variance, supp. Eq. 25-27). f = the scattered diffuse
+/// as stored for display, G = the unscattered diffuse (in-frame constant control), both tracked as displayed
+/// gamma-space luminance (emcv_adaptive_tracked).
+///   spvg      moving mean/variance of f (eta 0.2)
+///   cv        EMCM over (f, G) (eta 0.2), a change the control does not explain clipped (emcv_history_push_cv),
+///             then the comoments scaled by `noise_ratio`, the tile's noise test (emcv_history_noise_ratio,
+///             emcv_history_rescale_cv)
+///   cv-notex  moving mean/variance of r = f - G (alpha = 1, eta 0.2)
+/// A pixel that took no samples learns nothing about its noise and is not pushed. A non-finite f or G is
+/// refused by the port (state unchanged); a poisoned stored state is reset, never used.
+void emcv_adaptive_update(ivec2 p, vec3 scattered, vec3 unscattered, uint n, float noise_ratio) {
+    if (n == 0u) return;
+    EmcvAdaptiveState s = emcv_adaptive_load(p);
     float f = emcv_adaptive_tracked(p, scattered);
     float g = emcv_adaptive_tracked(p, unscattered);
 #if defined(EMCV_ADAPTIVE_CV)
     emcv_history_push_cv(s, f, g, EMCV_HISTORY_ETA_EMCM, float(n));
+    emcv_history_rescale_cv(s, noise_ratio);
 #elif defined(EMCV_ADAPTIVE_NOTEX)
     emcv_moving_stats_push_batch(s, emcv_cv_residual(f, 1.0f, g), EMCV_HISTORY_ETA_MOVING, float(n));
 #else
@@ -150,5 +172,37 @@ void emcv_adaptive_update(ivec2 p, vec3 scattered, vec3 unscattered, uint n) {
 #endif
     emcv_adaptive_store(p, s);
 }
+
+#if defined(EMCV_ADAPTIVE_TILE_UPDATE)
+#if defined(EMCV_ADAPTIVE_CV)
+// The tile's noise test: each pixel's term before its push, its n and its material (0: no term to pool).
+shared float tile_noise_term[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];
+shared float tile_noise_n[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];
+shared uint tile_noise_code[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];
+#endif
+
+/// The history update of the workgroup's 8x8 tile, pixel p of material `code` having taken n samples (0 off
+/// screen and for pixels that do not scatter): every invocation calls it, in uniform control flow (cv's noise
+/// test holds a barrier). cv: each pixel's noise-test term before its push, pooled over the tile's pixels of its
+/// material in row order (emcv_history_noise_add, emcv_history_noise_ratio), then the push and the rescale
+/// (emcv_adaptive_update); the other methods push as they are.
+void emcv_adaptive_update_tile(ivec2 p, vec3 scattered, vec3 unscattered, uint n, uint code) {
+#if defined(EMCV_ADAPTIVE_CV)
+    uint here = gl_LocalInvocationIndex;
+    tile_noise_term[here] = emcv_adaptive_noise_term(p, scattered, unscattered, n);
+    tile_noise_n[here] = float(n);
+    tile_noise_code[here] = n > 0u ? code : 0u;
+    barrier();
+    if (n == 0u) return;
+    vec3 pool = vec3(0.0f);
+    for (uint i = 0u; i < uint(EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE); ++i) {
+        if (tile_noise_code[i] == code) emcv_history_noise_add(pool, tile_noise_term[i], tile_noise_n[i]);
+    }
+    emcv_adaptive_update(p, scattered, unscattered, n, emcv_history_noise_ratio(pool));
+#else
+    emcv_adaptive_update(p, scattered, unscattered, n, 1.0f);
+#endif
+}
+#endif
 
 #endif  // #ifndef EMCV_ADAPTIVE_HISTORY_IO_H

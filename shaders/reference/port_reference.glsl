@@ -102,10 +102,16 @@ void main() {
     const vec3 scattered = sub_pixel ? vec3(g) : sum / max(weights, vec3(emcv_float_min_normal()));
     const float f = emcv_gamma_luminance(scattered);
 
-    // Update: cv's robust push of (f, G), spvg's push of f, and the residual at the previous alpha.
+    // Update: cv's robust push of (f, G) and its noise test, spvg's push of f, and the residual at the previous
+    // alpha.
     const float alpha = emcv_history_predicted_alpha(cov);
     const float residual_value = emcv_cv_residual(f, alpha, g);
+    // cv's noise test over a pool of this pixel alone (the renderer pools over the pixel's 8x8 tile).
+    vec3 noise_pool = vec3(0.0f);
+    emcv_history_noise_add(noise_pool, emcv_history_noise_term(cov, f, g, EMCV_HISTORY_ETA_EMCM, float(max(n, 1))),
+                           float(max(n, 1)));
     emcv_history_push_cv(cov, f, g, EMCV_HISTORY_ETA_EMCM, float(max(n, 1)));
+    emcv_history_rescale_cv(cov, emcv_history_noise_ratio(noise_pool));
     emcv_moving_stats_push_batch(stats, f, EMCV_HISTORY_ETA_MOVING, float(max(n, 1)));
     EmcvMovingStats res = residual.state[index];
     emcv_moving_stats_push(res, residual_value, EMCV_HISTORY_ETA_MOVING);

@@ -4,7 +4,8 @@
 // include/emcv/port/sss.h. N is the frame's fixed count (burley-N, reference). Built for an adaptive method
 // (the renderer defines its EMCV_ADAPTIVE_* from the method table, adaptive/history_io.h), the pass takes the
 // pixel's own N from the adaptive-samples pass and, after its sampling loop, pushes the result into the
-// pixel's history (emcv_adaptive_update): sampling and history update are one dispatch.
+// pixel's history (emcv_adaptive_update_tile): sampling and history update are one dispatch. For cv the
+// tile's noise test runs between the two (adaptive/history_io.h).
 #version 450 core
 
 #include "emcv/port/sss.h"
@@ -14,6 +15,7 @@
 
 #if defined(EMCV_ADAPTIVE_SPVG) || defined(EMCV_ADAPTIVE_CV) || defined(EMCV_ADAPTIVE_NOTEX)
 #define EMCV_BURLEY_ADAPTIVE 1
+#define EMCV_ADAPTIVE_TILE_UPDATE 1  // emcv_adaptive_update_tile and its shared memory
 #include "adaptive/history_io.h"
 #endif
 
@@ -29,6 +31,12 @@ layout(r32ui, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_COUNT)) writeonly unifor
 
 shared uint tile_sample_sum;
 shared uint tile_sample_max;
+#if defined(EMCV_BURLEY_ADAPTIVE)
+// What the history update of this invocation's pixel reads after the tile's noise test (scatter leaves it).
+vec3 pending_scattered = vec3(0.0f);
+vec3 pending_unscattered = vec3(0.0f);
+uint pending_code = 0u;
+#endif
 
 #if defined(EMCV_BURLEY_ADAPTIVE)
 /// The pixel's N from the adaptive-samples pass: its count under a quality target; in budget mode that pass
@@ -83,8 +91,10 @@ uint scatter(ivec2 p) {
     imageStore(out_count, p, uvec4(n));
 #if defined(EMCV_BURLEY_ADAPTIVE)
     // The invocation reads its own store back: the binary16 value the display shows (and the separate update
-    // pass this replaced used to read).
-    emcv_adaptive_update(p, imageLoad(out_scattered, p).xyz, centre, n);
+    // pass this replaced used to read); main pushes it once the tile's noise test is done.
+    pending_scattered = imageLoad(out_scattered, p).xyz;
+    pending_unscattered = centre;
+    pending_code = code;
 #endif
     return n;
 }
@@ -95,7 +105,11 @@ void main() {
         tile_sample_max = 0u;
     }
     barrier();
-    uint n = scatter(emcv_render_tile_pixel());
+    ivec2 p = emcv_render_tile_pixel();
+    uint n = scatter(p);
+#if defined(EMCV_BURLEY_ADAPTIVE)
+    emcv_adaptive_update_tile(p, pending_scattered, pending_unscattered, n, pending_code);
+#endif
     // Sample statistics reduced per tile in shared memory, then one global atomic per tile (not per pixel).
     atomicAdd(tile_sample_sum, n);
     atomicMax(tile_sample_max, n);

@@ -223,9 +223,11 @@ void update(const emcv::sampling_params& p, frame_state<State>& fs, input& in) {
     if (what & 2u)
         for (auto& t : taken) t = any_int(in);
     const bool null_g = (what & 4u) != 0u;  // documented as allowed for spvg only
+    const std::uint32_t* material = fs.with_material ? fs.material.data() : nullptr;
     const std::vector<State> before = fs.history;
     try {
-        emcv::sampling_update(p, fs.history.data(), fs.pixels, f.data(), null_g ? nullptr : g.data(), taken.data());
+        emcv::sampling_update(p, fs.history.data(), fs.pixels, fs.width, material, f.data(), null_g ? nullptr : g.data(),
+                              taken.data());
         EMCV_FUZZ_ASSERT(params_valid(p) && (!null_g || p.estimator == emcv::sampling_estimator::spvg));
     } catch (const std::invalid_argument&) {
         EMCV_FUZZ_ASSERT(!params_valid(p) || (null_g && p.estimator != emcv::sampling_estimator::spvg));
@@ -234,7 +236,7 @@ void update(const emcv::sampling_params& p, frame_state<State>& fs, input& in) {
     }
     for (std::size_t i = 0; i < fs.pixels; ++i) {
         const State &s = fs.history[i], &old = before[i];
-        if (taken[i] <= 0) {
+        if (taken[i] <= 0 || (material != nullptr && material[i] == 0u)) {  // nothing learnt
             EMCV_FUZZ_ASSERT(same_bits(s, old));
             continue;
         }

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // cv's robust update (port::emcv_history_push_cv, which sampling_update calls for cv) on an analytic stream:
-// 1024 pixels, N = 16 samples a frame of standard deviation s = 0.1 around f = alpha G, alpha = 2, G = 0.25
+// 32x32 pixels, N = 16 samples a frame of standard deviation s = 0.1 around f = alpha G, alpha = 2, G = 0.25
 // (static), eta = sampling_eta (cv's default), 200 frames: every history is mature (count >= 1 / eta) and its
 // sigma^2 estimates s^2. With G static, C_GG = C_fG = 0 and the residual variance is C_ff; the predicted alpha
 // is mu_f / mu_G.
@@ -30,6 +30,21 @@
 //            pixel's low sigma^2 lets a smaller move pass (one pixel's estimate varies by ~47%). A step by
 //            1.05 moves f by 1 sigma / sqrt(N): z ~ N(1, 1) passes 5 with probability 3e-5, on a handful of pixels
 //            at most. Every pixel under the test keeps the count its push gives (201).
+//   the tile's noise test  the pixels form a 32x32 image of 16 8x8 tiles, one material. Each pixel's term before
+//            its push is z = min(N e^2 / sigma^2, 25) (e = f - mu_f - (mu_f / mu_G)(G - mu_G): G is static); a tile's
+//            mean zbar over its 64 pixels estimates the ratio rho of the noise now to the history's, with sampling
+//            variance v = sum(r) / 64^2 (r as above: v = r / 64 ~ 0.037); where zbar < 1 and (zbar - 1)^2 > v each
+//            pixel's comoments are scaled after its push by 1 - sqrt((zbar - 1)^2 - v), recomputed here in double
+//            from the states before the frame. The noise falls to a quarter (s^2 / 16): the residual e then also holds
+//            the moving mean's error from the old noise, N Var(mu_f) = eta / (2 - eta) s^2 (0.11 s^2), so the first
+//            frame's zbar ~ 1 / 16 + 0.11 = 0.17 and its ratio ~ 1 - sqrt(0.83^2 - 0.037) = 0.19: sigma^2 falls to
+//            about a fifth of what the push alone leaves, and the later frames only rescale further, down to the new
+//            level at most (the ratio is shrunk towards 1 by v). So 3 frames after the fall sigma^2 is at most a
+//            third of the push alone's (which holds (1 - eta)^3 s^2 ~ 8 s^2 / 16) and at least half the new s^2.
+//            Under
+//            no change the test fires where zbar < 1 - sqrt(v) (zbar's own noise, sd sqrt(r / 64) ~ 0.19), and
+//            each firing scales by 1 - sqrt((zbar - 1)^2 - v): sigma^2's mean is pulled under s^2 by what the
+//            run measures, which the bound below keeps within 10% (the quality target's own tolerance is 15%).
 #include <catch2/catch_test_macros.hpp>
 
 #include <algorithm>
@@ -44,7 +59,7 @@
 
 namespace {
 
-constexpr std::size_t pixels = 1024;
+constexpr std::size_t width = 32, pixels = width * width;
 constexpr int warm_up = 200, n_samples = 16;
 constexpr double s = 0.1, alpha = 2.0, g_before = 0.25;
 
@@ -57,13 +72,13 @@ struct stream {
 
     stream() { p.estimator = emcv::sampling_estimator::cv; }
 
-    /// One frame: f = alpha G + offset + the mean of N samples of standard deviation s.
-    void frame(double g_value, double offset) {
+    /// One frame: f = alpha G + offset + the mean of N samples of standard deviation s * noise.
+    void frame(double g_value, double offset, double noise = 1.0) {
         for (std::size_t i = 0; i < pixels; ++i) {
             g[i] = static_cast<float>(g_value);
-            f[i] = static_cast<float>(alpha * g_value + offset + s * rng.normal() / std::sqrt(double(n_samples)));
+            f[i] = static_cast<float>(alpha * g_value + offset + noise * s * rng.normal() / std::sqrt(double(n_samples)));
         }
-        emcv::sampling_update(p, states.data(), pixels, f.data(), g.data(), n.data());
+        emcv::sampling_update(p, states.data(), pixels, width, nullptr, f.data(), g.data(), n.data());
     }
 
     std::vector<float> sigma2() const {
@@ -195,6 +210,70 @@ TEST_CASE("cv's update: a step the control explains lowers the count to the fram
             CHECK(lowered <= 4);
         }
     }
+}
+
+TEST_CASE("cv's update: the tile's noise test scales the comoments by its pool's ratio where the noise fell") {
+    stream st;
+    for (int t = 0; t < warm_up; ++t) st.frame(g_before, 0.0);
+    const double eta = emcv::sampling_eta(st.p), unbias = (2 - eta) / (2 * (1 - eta));
+    const double r = 2 + (9.36 - 3) / n_samples;
+    // One frame at noise scale k through the library and, from the same states, through the push alone; the
+    // ratio each pixel's comoments were scaled by, against the derivation in double.
+    std::size_t fired = 0, off = 0;
+    const auto step = [&](double k) {
+        const std::vector<emcv::port::EmcvEmcm2> before = st.states;
+        st.frame(g_before, 0.0, k);
+        constexpr std::size_t tile = emcv::sampling_tile_size;
+        for (std::size_t y0 = 0; y0 < width; y0 += tile)
+            for (std::size_t x0 = 0; x0 < width; x0 += tile) {
+                double zsum = 0, rsum = 0, m = 0;
+                for (std::size_t y = y0; y < y0 + tile; ++y)
+                    for (std::size_t x = x0; x < x0 + tile; ++x) {
+                        const std::size_t i = y * width + x;
+                        const double sigma2 = unbias * before[i].cov.x, mu = before[i].mean.x;
+                        const double e = double(st.f[i]) - mu - (mu / before[i].mean.y) * (double(st.g[i]) - before[i].mean.y);
+                        zsum += std::min(n_samples * e * e / sigma2, 25.0), rsum += r, m += 1;
+                    }
+                const double z = zsum / m, bias2 = (z - 1) * (z - 1) - rsum / (m * m);
+                const double ratio = z < 1 && bias2 > 0 ? 1 - std::sqrt(bias2) : 1.0;
+                if (ratio < 1) ++fired;
+                for (std::size_t y = y0; y < y0 + tile; ++y)
+                    for (std::size_t x = x0; x < x0 + tile; ++x) {
+                        const std::size_t i = y * width + x;
+                        emcv::port::EmcvEmcm2 push = before[i];
+                        emcv::port::emcv_history_push_cv(push, st.f[i], st.g[i], float(eta), float(n_samples));
+                        if (std::fabs(double(st.states[i].cov.x) / double(push.cov.x) - ratio) > 1e-5) ++off;
+                        if (st.states[i].count != push.count) ++off;
+                    }
+            }
+    };
+    // No change: 100 frames at the same noise.
+    double mean_sigma2 = 0;
+    for (int t = 0; t < 100; ++t) {
+        step(1.0);
+        mean_sigma2 += mean_of(st.sigma2()) / 100;
+    }
+    const std::size_t fired_static = fired;
+    INFO("no change: " << fired_static << " of 1600 tile-frames rescaled, mean sigma^2 / s^2 " << mean_sigma2 / (s * s));
+    CHECK(std::fabs(mean_sigma2 / (s * s) - 1) <= 0.10);
+    // The noise falls to a quarter, the level and G unchanged; the push alone for comparison.
+    std::vector<emcv::port::EmcvEmcm2> plain = st.states;
+    fired = 0;
+    for (int t = 0; t < 3; ++t) {
+        step(0.25);
+        for (std::size_t i = 0; i < pixels; ++i)
+            emcv::port::emcv_history_push_cv(plain[i], st.f[i], st.g[i], float(eta), float(n_samples));
+    }
+    std::vector<float> plain_sigma2(pixels);
+    emcv::sampling_sigma2(st.p, plain.data(), pixels, nullptr, plain_sigma2.data());
+    const double now = mean_of(st.sigma2()) / (s * s / 16), without = mean_of(plain_sigma2) / (s * s / 16);
+    INFO("3 frames after the fall: " << fired << " of 48 tile-frames rescaled; mean sigma^2 / the new s^2 " << now
+                                     << " (the push alone: " << without << "); " << off << " pixel-frames off the derivation");
+    CHECK(off == 0);
+    CHECK(fired >= 16);  // every tile on the first frame
+    CHECK(now >= 0.5);
+    CHECK(now <= without / 3);
+    CHECK(without >= 4.0);  // (1 - eta)^3 * 16 ~ 8
 }
 
 TEST_CASE("a batch push whose (1 - r) n d_f overflows keeps the cross comoment finite (fuzz finding)") {

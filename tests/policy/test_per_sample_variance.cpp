@@ -37,7 +37,7 @@ namespace {
 
 using emcv_policy_test::gaussian_source;
 
-constexpr std::size_t pixels = 4096;
+constexpr std::size_t width = 64, pixels = width * width;
 constexpr int frames = 400;  // (1 - 0.05)^400 ~ 1e-9: every estimator is past its warm-up
 constexpr double s = 0.1, mu = 0.5;
 
@@ -99,8 +99,8 @@ run_result run(emcv::sampling_estimator estimator, schedule k, bool batch, std::
             }
             if (!batch) emcv::port::emcv_moving_stats_push(moving[i], f[i], static_cast<float>(eta));
         }
-        if (batch && cv) emcv::sampling_update(p, emcm.data(), pixels, f.data(), g.data(), n.data());
-        else if (batch) emcv::sampling_update(p, moving.data(), pixels, f.data(), g.data(), n.data());
+        if (batch && cv) emcv::sampling_update(p, emcm.data(), pixels, width, nullptr, f.data(), g.data(), n.data());
+        else if (batch) emcv::sampling_update(p, moving.data(), pixels, width, nullptr, f.data(), g.data(), n.data());
     }
     std::vector<float> sigma2(pixels);
     if (cv) emcv::sampling_sigma2(p, emcm.data(), pixels, nullptr, sigma2.data());

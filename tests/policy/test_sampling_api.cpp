@@ -77,11 +77,11 @@ TEST_CASE("the functions refuse the other estimator's state type and null arrays
     std::vector<emcv::port::EmcvMovingStats> moving(4, emcv::port::emcv_moving_stats_init());
     std::vector<float> f(4, 0.5f), sigma2(4);
     std::vector<int> n(4, 1);
-    CHECK_THROWS_AS(emcv::sampling_update(p, emcm.data(), 4, f.data(), f.data(), n.data()), std::invalid_argument);
-    CHECK_NOTHROW(emcv::sampling_update(p, moving.data(), 4, f.data(), nullptr, n.data()));  // spvg needs no G
+    CHECK_THROWS_AS(emcv::sampling_update(p, emcm.data(), 4, 2, nullptr, f.data(), f.data(), n.data()), std::invalid_argument);
+    CHECK_NOTHROW(emcv::sampling_update(p, moving.data(), 4, 2, nullptr, f.data(), nullptr, n.data()));  // spvg needs no G
     p.estimator = emcv::sampling_estimator::cv;
     CHECK_THROWS_AS(emcv::sampling_sigma2(p, moving.data(), 4, nullptr, sigma2.data()), std::invalid_argument);
-    CHECK_THROWS_AS(emcv::sampling_update(p, emcm.data(), 4, f.data(), nullptr, n.data()), std::invalid_argument);
+    CHECK_THROWS_AS(emcv::sampling_update(p, emcm.data(), 4, 2, nullptr, f.data(), nullptr, n.data()), std::invalid_argument);
     CHECK_THROWS_AS(emcv::sampling_counts(p, sigma2.data(), 4, 3, 0.0f, 0, 0, n.data()), std::invalid_argument);
 }
 
@@ -94,7 +94,7 @@ TEST_CASE("variance codes: a young history takes n_max (quality) or B (budget), 
         emcv::sampling_params p;
         p.estimator = e;
         std::vector<emcv::port::EmcvMovingStats> s(2, emcv::port::emcv_moving_stats_init());
-        emcv::sampling_update(p, s.data(), 2, f.data(), g.data(), taken.data());
+        emcv::sampling_update(p, s.data(), 2, 2, nullptr, f.data(), g.data(), taken.data());
         emcv::plan_frame(p, s.data(), 2, 2, nullptr, sub, 0, 0, sigma2.data(), n.data());
         CHECK(n[0] == p.n_max);
         CHECK(n[1] == (e == emcv::sampling_estimator::spvg ? p.n_max : 0));  // spvg has no control: never skips
@@ -109,7 +109,7 @@ TEST_CASE("variance codes: a young history takes n_max (quality) or B (budget), 
     p.estimator = emcv::sampling_estimator::cv;
     std::vector<emcv::port::EmcvEmcm2> s(2, emcv::port::emcv_emcm2_init());
     taken = {0, 3};
-    emcv::sampling_update(p, s.data(), 2, f.data(), g.data(), taken.data());
+    emcv::sampling_update(p, s.data(), 2, 2, nullptr, f.data(), g.data(), taken.data());
     CHECK(s[0].count == 0u);
     CHECK(s[1].count == 1u);
 }

@@ -66,7 +66,7 @@ stream_result run(emcv::sampling_estimator estimator, State init, const std::vec
             // the mean of n[i] samples G (1 + rho z_k): exactly G (1 + rho z / sqrt(n))
             f[i] = static_cast<float>(g[i] * (1 + rho * rng.normal() / std::sqrt(double(n[i]))));
         }
-        emcv::sampling_update(p, states.data(), pixels, f.data(), g.data(), n.data());
+        emcv::sampling_update(p, states.data(), pixels, side, nullptr, f.data(), g.data(), n.data());
     }
     return r;
 }

@@ -47,7 +47,7 @@ int run(const emcv::sampling_params& p, std::size_t width, std::size_t height, i
         const emcv::frame_plan plan = emcv::plan_frame(p, history.data(), pixels, width, material.data(), nullptr,
                                                        static_cast<std::uint32_t>(t), seed, sigma2.data(),
                                                        counts.data(), prior);
-        emcv::sampling_update(p, history.data(), pixels, f.data(), g.data(), counts.data());
+        emcv::sampling_update(p, history.data(), pixels, width, material.data(), f.data(), g.data(), counts.data());
         write(out, counts.data(), pixels);
         write(out, sigma2.data(), pixels);
         write(out, &plan.lambda, 1);

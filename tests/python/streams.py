@@ -31,5 +31,5 @@ def run_stream(params, g0, rho, frames, switch_frame=None, material=None, seed=7
         light = 0.0 if switch_frame is not None and t >= switch_frame else 1.0
         g = (light * g0).astype(np.float32)
         f = sss_output(g, plan.counts, rho, rng)
-        emcv.sampling_update(params, history, f, g, plan.counts)
+        emcv.sampling_update(params, history, f, g, plan.counts, material=material)
     return plans, history

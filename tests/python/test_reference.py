@@ -37,7 +37,7 @@ def through_python(params, data, seed):
     chunks = []
     for t, (f, g, material) in enumerate(data):
         plan = emcv.plan_frame(params, history, material=material, frame=t, seed=seed)
-        emcv.sampling_update(params, history, f, g, plan.counts)
+        emcv.sampling_update(params, history, f, g, plan.counts, material=material)
         chunks += [plan.counts.astype("<i4").tobytes(), plan.sigma2.astype("<f4").tobytes(),
                    np.float32(plan.lambda_).tobytes()]
         assert plan.samples == int(plan.counts.sum())

@@ -343,6 +343,62 @@ EMCV_FN bool emcv_history_push_cv(EMCV_INOUT(EmcvEmcm2) s, float f, float g, flo
     return pushed;
 }
 
+// The tile's noise test (docs/renderer.md, "After a change: the stale allocation"). A light change the control
+// explains moves no residual, so the change test above does not fire, yet the noise may have changed: a pixel
+// whose samples reached the lit surface of a light that went off keeps that light's variance for about 1 / eta
+// frames while its own level hardly moves, and the budget keeps spending there. This frame's residual e
+// against the history's prediction measures the noise now: n e^2 / sigma^2 has mean rho, the ratio of this
+// frame's per-sample variance to the history's. One pixel's term is too noisy to act on (its relative variance
+// is r, emcv_history_frame_relative_variance), so it is averaged over the pixels of the same material in the
+// pixel's 8x8 tile; where that mean says the noise fell, the history's comoments are scaled down by the
+// estimated ratio (emcv_history_rescale_cv) instead of being forgotten at 1 - eta a frame.
+
+/// The noise test, one pixel's term before its push: n e^2 / sigma^2 with e the residual move the change test
+/// reads, capped at emcv_history_change_z2() (a move beyond it is a change, which the push clips to that
+/// weight), or emcv_history_no_variance() for a history the change test does not read (younger than 1 / eta
+/// frames, without a variance or not valid) or a non-finite f or g.
+EMCV_FN float emcv_history_noise_term(EMCV_IN(EmcvEmcm2) s, float f, float g, float eta, float n) {
+    float sigma2 = emcv_history_sigma2_cv(s, eta);
+    bool mature = float(s.count) * eta >= 1.0f;
+    if (!(mature && sigma2 > 0.0f && n > 0.0f && emcv_emcm2_valid(s) && emcv_is_finite(f) && emcv_is_finite(g)))
+        return emcv_history_no_variance();
+    EMCV_PRECISE float e = (f - s.mean.x) - emcv_history_predicted_alpha(s) * (g - s.mean.y);
+    EMCV_PRECISE float z2 = n * e * e / sigma2;
+    return min(z2, emcv_history_change_z2());
+}
+
+/// The noise test's pool, one pixel: adds its term and the term's relative variance r at its n
+/// (emcv_history_frame_relative_variance) to (sum of terms, sum of r, pixels) when it has a term. Pixels are
+/// visited row by row over the tile, on the GPU and in C++.
+EMCV_FN void emcv_history_noise_add(EMCV_INOUT(vec3) pool, float term, float n) {
+    if (!(term >= 0.0f)) return;
+    float r = emcv_history_frame_relative_variance(emcv_history_residual_kurtosis(), n);
+    pool = vec3(pool.x + term, pool.y + r, pool.z + 1.0f);
+}
+
+/// The ratio a pool (emcv_history_noise_add) scales its pixels' comoments by: the mean term z estimates the
+/// ratio rho of the noise now to the history's, with sampling variance v = (sum of r) / pixels^2 under no change;
+/// the bias of the history is estimated without that noise, |rho - 1| = sqrt(max((z - 1)^2 - v, 0)) (the square of
+/// a noisy estimate exceeds the true square by its variance), and only a fall is acted on: 1 - that, in (0, 1].
+/// A rise is left to the change test, which clips it per pixel. 1 without terms.
+EMCV_FN float emcv_history_noise_ratio(EMCV_IN(vec3) pool) {
+    if (!(pool.z > 0.0f)) return 1.0f;
+    EMCV_PRECISE float z = pool.x / pool.z;
+    if (!(z < 1.0f)) return 1.0f;
+    EMCV_PRECISE float v = pool.y / (pool.z * pool.z);
+    EMCV_PRECISE float bias2 = (z - 1.0f) * (z - 1.0f) - v;
+    if (!(bias2 > 0.0f)) return 1.0f;
+    return 1.0f - sqrt(bias2);
+}
+
+/// Scales cv's comoments by ratio (emcv_history_noise_ratio): the residual variance C_ff - C_fG^2 / C_GG scales
+/// by it, the coefficient C_fG / C_GG and the means stay. A ratio of 1 (or not in (0, 1)) leaves the state as it
+/// is, bit for bit.
+EMCV_FN void emcv_history_rescale_cv(EMCV_INOUT(EmcvEmcm2) s, float ratio) {
+    if (!(ratio > 0.0f && ratio < 1.0f)) return;
+    s.cov = s.cov * ratio;
+}
+
 /// Pooling, one neighbour's effective frames: adds 1 / frames to the running sum when the neighbour has a
 /// variance (the same neighbours as emcv_history_pool_add).
 EMCV_FN void emcv_history_pool_add_frames(EMCV_INOUT(float) inverse_sum, float sigma2, float frames) {
