@@ -383,8 +383,8 @@ PYBIND11_MODULE(emcv, m) {
           "emcv::sampling_update: pushes each pixel's output f (float32, the mean of its counts[i] samples) and "
           "control g (float32; None for spvg only) into the history as a batch of counts[i] (int32); a pixel with "
           "counts <= 0 or material 0 (uint32, as plan_frame's; None: every pixel scatters, one material) is left "
-          "as it is, a non-finite value is refused (its `rejected` count grows); cv's tile noise test pools over "
-          "the pixels of a material in each 8x8 tile.");
+          "as it is, a non-finite value is refused (its `rejected` count grows); cv's noise test pools over each "
+          "8x8 tile's scattering pixels.");
     m.def("budget_solve", &budget_solve_py, py::arg("params"), py::arg("sigma2"), py::arg("material") = py::none(),
           "emcv::budget_add + emcv::budget_solve: the budget's lambda over the scattering pixels of a (height, width) "
           "float32 sigma2 of variance codes (plan_frame's sigma2), with params.budget whatever params.mode is.");

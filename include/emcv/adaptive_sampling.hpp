@@ -17,8 +17,8 @@
 //                           robust (port::emcv_history_push_cv: a jump the control does not explain enters
 //                           with a 5-sigma weight and restarts the means; an explained move that carries f's
 //                           level beyond 5 sigma lowers the count to the frames the variance measured at the
-//                           old level is worth), and where the residuals of a tile's pixels say the noise
-//                           fell, their comoments are scaled down by the ratio (the tile's noise test).
+//                           old level is worth), and where the residuals of an 8x8 tile's pixels say the
+//                           noise fell, their comoments are scaled down by the ratio (the tile's noise test).
 //            Every formula is the port's (include/emcv/port/history.h, budget.h, ema.h, cv.h), the code the
 //            GPU runs: this header only loops over pixels, in the order of shaders/adaptive/samples.comp.glsl
 //            and the burley pass's count and history update. budget_solve finds the lambda that the samples
@@ -176,9 +176,9 @@ inline constexpr std::size_t sampling_tile_size = 8;
 /// the means at (f, G); where a move the control explains still carries f's level beyond 5 sigma, the count is
 /// lowered to the frames the variance measured at the old level is worth (port::emcv_history_level_bias).
 /// cv then runs the tile's noise test: each pixel's term before its push (port::emcv_history_noise_term) is
-/// pooled over the pixels of its material in its sampling_tile_size tile that took samples, in row order
-/// (port::emcv_history_noise_add), and where the pool says the noise fell, the pixel's comoments are scaled by
-/// the ratio (port::emcv_history_noise_ratio, port::emcv_history_rescale_cv) after its push.
+/// pooled over the scattering pixels of its sampling_tile_size tile that took samples (port::emcv_history_noise_add,
+/// exact fixed-point sums), and where the pool says the noise fell, every such pixel's comoments are scaled by the
+/// ratio (port::emcv_history_noise_ratio, port::emcv_history_rescale_cv) after its push.
 /// A pixel with taken[i] <= 0, or of material 0 (it does not scatter), learns nothing about its noise and is
 /// left as it is; a non-finite f or G is refused by the port (state unchanged, `rejected` + 1). The arrays hold
 /// `pixels` entries in rows of `width` (the image plan_frame planned); material may be null (every pixel
@@ -203,34 +203,28 @@ void sampling_update(const sampling_params& p, State* states, std::size_t pixels
         for (std::size_t i = 0; i < pixels; ++i)
             if (pushes(i)) detail::push(p, eta, states[i], f[i], g != nullptr ? g[i] : 0.0f, static_cast<float>(taken[i]));
     } else {
-        // One tile at a time, as the burley pass's workgroup: every term before any push of the tile.
+        // One tile at a time, as the burley pass's workgroup: the tile's pool from every term before any push.
         constexpr std::size_t tile = sampling_tile_size;
         const std::size_t height = pixels / width;
-        float term[tile * tile];
-        std::uint32_t code[tile * tile];
         for (std::size_t y0 = 0; y0 < height; y0 += tile) {
             for (std::size_t x0 = 0; x0 < width; x0 += tile) {
                 const std::size_t w = width - x0 < tile ? width - x0 : tile, h = height - y0 < tile ? height - y0 : tile;
-                for (std::size_t ly = 0; ly < h; ++ly)
-                    for (std::size_t lx = 0; lx < w; ++lx) {
-                        const std::size_t i = (y0 + ly) * width + x0 + lx, here = ly * tile + lx;
-                        code[here] = pushes(i) ? (material != nullptr ? material[i] : 1u) : 0u;
-                        term[here] = code[here] != 0u ? port::emcv_history_noise_term(states[i], f[i], g[i], eta,
-                                                                                      static_cast<float>(taken[i]))
-                                                      : port::emcv_history_no_variance();
-                    }
+                port::uvec3 pool(0u);
                 for (std::size_t ly = 0; ly < h; ++ly)
                     for (std::size_t lx = 0; lx < w; ++lx) {
                         const std::size_t i = (y0 + ly) * width + x0 + lx;
-                        if (code[ly * tile + lx] == 0u) continue;
-                        port::vec3 pool(0.0f);
-                        for (std::size_t qy = 0; qy < h; ++qy)
-                            for (std::size_t qx = 0; qx < w; ++qx)
-                                if (code[qy * tile + qx] == code[ly * tile + lx])
-                                    port::emcv_history_noise_add(pool, term[qy * tile + qx],
-                                                                 static_cast<float>(taken[(y0 + qy) * width + x0 + qx]));
+                        if (!pushes(i)) continue;
+                        const float n = static_cast<float>(taken[i]);
+                        port::emcv_history_noise_add(pool, port::emcv_history_noise_term(states[i], f[i], g[i], eta, n),
+                                                     port::emcv_history_noise_relative(n));
+                    }
+                const float ratio = port::emcv_history_noise_ratio(pool);
+                for (std::size_t ly = 0; ly < h; ++ly)
+                    for (std::size_t lx = 0; lx < w; ++lx) {
+                        const std::size_t i = (y0 + ly) * width + x0 + lx;
+                        if (!pushes(i)) continue;
                         port::emcv_history_push_cv(states[i], f[i], g[i], eta, static_cast<float>(taken[i]));
-                        port::emcv_history_rescale_cv(states[i], port::emcv_history_noise_ratio(pool));
+                        port::emcv_history_rescale_cv(states[i], ratio);
                     }
             }
         }

@@ -32,6 +32,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 SAMPLES = "adaptive/samples.comp.glsl"
 BUDGET = "adaptive/budget_block.h"
 BURLEY = "render/sss_burley.comp.glsl"
+HISTORY_IO = "adaptive/history_io.h"
 
 # (name, the pass it answers for, [(file, anchor, replacement)])
 VARIANTS = [
@@ -56,8 +57,11 @@ VARIANTS = [
                 "gl_NumWorkGroups.y);", "")]),
     ("burley pass: every pixel takes B (no divergence; the history update runs)", "burley",
      [(BURLEY, "    uint n = adaptive_count(p);\n", "    uint n = adaptive_count(p);\n    n = uint(EMCV_HISTORY_SPP_BUDGET);\n")]),
+    ("burley pass: no noise test (cv: the push alone, no barrier, no pool)", "burley",
+     [(HISTORY_IO, "#if defined(EMCV_ADAPTIVE_CV)\n    if (gl_LocalInvocationIndex < 3u)",
+       "#if 0\n    if (gl_LocalInvocationIndex < 3u)")]),
     ("burley pass: no history update", "burley",
-     [(BURLEY, "    emcv_adaptive_update(p, imageLoad(out_scattered, p).xyz, centre, n);\n", "")]),
+     [(BURLEY, "    emcv_adaptive_update_tile(p, pending_scattered, pending_unscattered, n);\n", "")]),
 ]
 
 

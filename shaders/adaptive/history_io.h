@@ -133,23 +133,12 @@ EmcvAdaptiveState emcv_adaptive_load(ivec2 p) {
     return s;
 }
 
-/// cv's noise-test term of SSS pixel p before its push (emcv_history_noise_term, the tracked f and G as the
-/// update reads them); emcv_history_no_variance() for the other methods and for a pixel that took no samples.
-float emcv_adaptive_noise_term(ivec2 p, vec3 scattered, vec3 unscattered, uint n) {
-#if defined(EMCV_ADAPTIVE_CV)
-    if (n == 0u) return emcv_history_no_variance();
-    return emcv_history_noise_term(emcv_adaptive_load(p), emcv_adaptive_tracked(p, scattered),
-                                   emcv_adaptive_tracked(p, unscattered), EMCV_HISTORY_ETA_EMCM, float(n));
-#else
-    return emcv_history_no_variance();
-#endif
-}
-
 /// The history update of SSS pixel p once its samples are taken (the burley pass runs it after its sampling
-/// loop): pushes this frame's values as the mean of the n samples the pixel took (include/emcv/port/ema.h,
-/// *_push_batch: the history estimates the per-sample variance, supp. Eq. 25-27). f = the scattered diffuse
-/// as stored for display, G = the unscattered diffuse (in-frame constant control), both tracked as displayed
-/// gamma-space luminance (emcv_adaptive_tracked).
+/// loop; emcv_adaptive_update_tile): pushes this frame's values into the pixel's state s (emcv_adaptive_load) as
+/// the mean of the n samples the pixel took (include/emcv/port/ema.h, *_push_batch: the history estimates the
+/// per-sample variance, supp. Eq. 25-27) and stores it. f and g are the tracked scattered diffuse as stored for
+/// display and the tracked unscattered diffuse (in-frame constant control): gamma-space luminance
+/// (emcv_adaptive_tracked).
 ///   spvg      moving mean/variance of f (eta 0.2)
 ///   cv        EMCM over (f, G) (eta 0.2), a change the control does not explain clipped (emcv_history_push_cv),
 ///             then the comoments scaled by `noise_ratio`, the tile's noise test (emcv_history_noise_ratio,
@@ -157,11 +146,8 @@ float emcv_adaptive_noise_term(ivec2 p, vec3 scattered, vec3 unscattered, uint n
 ///   cv-notex  moving mean/variance of r = f - G (alpha = 1, eta 0.2)
 /// A pixel that took no samples learns nothing about its noise and is not pushed. A non-finite f or G is
 /// refused by the port (state unchanged); a poisoned stored state is reset, never used.
-void emcv_adaptive_update(ivec2 p, vec3 scattered, vec3 unscattered, uint n, float noise_ratio) {
+void emcv_adaptive_update(ivec2 p, EmcvAdaptiveState s, float f, float g, uint n, float noise_ratio) {
     if (n == 0u) return;
-    EmcvAdaptiveState s = emcv_adaptive_load(p);
-    float f = emcv_adaptive_tracked(p, scattered);
-    float g = emcv_adaptive_tracked(p, unscattered);
 #if defined(EMCV_ADAPTIVE_CV)
     emcv_history_push_cv(s, f, g, EMCV_HISTORY_ETA_EMCM, float(n));
     emcv_history_rescale_cv(s, noise_ratio);
@@ -175,32 +161,45 @@ void emcv_adaptive_update(ivec2 p, vec3 scattered, vec3 unscattered, uint n, flo
 
 #if defined(EMCV_ADAPTIVE_TILE_UPDATE)
 #if defined(EMCV_ADAPTIVE_CV)
-// The tile's noise test: each pixel's term before its push, its n and its material (0: no term to pool).
-shared float tile_noise_term[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];
-shared float tile_noise_n[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];
-shared uint tile_noise_code[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];
+// The tile's noise-test pool (emcv_history_noise_add's: sums of term units, of relative-variance units, pixels),
+// added to with atomics: fixed-point sums are exact in any order.
+shared uint tile_noise_pool[3];
 #endif
 
 /// The history update of the workgroup's 8x8 tile, pixel p of material `code` having taken n samples (0 off
-/// screen and for pixels that do not scatter): every invocation calls it, in uniform control flow (cv's noise
-/// test holds a barrier). cv: each pixel's noise-test term before its push, pooled over the tile's pixels of its
-/// material in row order (emcv_history_noise_add, emcv_history_noise_ratio), then the push and the rescale
-/// (emcv_adaptive_update); the other methods push as they are.
-void emcv_adaptive_update_tile(ivec2 p, vec3 scattered, vec3 unscattered, uint n, uint code) {
-#if defined(EMCV_ADAPTIVE_CV)
-    uint here = gl_LocalInvocationIndex;
-    tile_noise_term[here] = emcv_adaptive_noise_term(p, scattered, unscattered, n);
-    tile_noise_n[here] = float(n);
-    tile_noise_code[here] = n > 0u ? code : 0u;
-    barrier();
-    if (n == 0u) return;
-    vec3 pool = vec3(0.0f);
-    for (uint i = 0u; i < uint(EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE); ++i) {
-        if (tile_noise_code[i] == code) emcv_history_noise_add(pool, tile_noise_term[i], tile_noise_n[i]);
+/// screen and for pixels that do not scatter), its scattered and unscattered diffuse as the burley pass stored
+/// them: every invocation calls it, in uniform control flow (cv's noise test holds barriers). The state, f and
+/// g are read once. cv: each pixel's noise-test term before its push (emcv_history_noise_term) and its relative
+/// variance (emcv_history_noise_relative), in fixed-point units (emcv_history_noise_units), summed over the tile's
+/// pixels that took samples, then the push and the rescale by the pool's ratio (emcv_history_noise_ratio,
+/// emcv_adaptive_update); the other methods push as they are.
+void emcv_adaptive_update_tile(ivec2 p, vec3 scattered, vec3 unscattered, uint n) {
+    EmcvAdaptiveState s = emcv_adaptive_init();
+    float f = 0.0f;
+    float g = 0.0f;
+    if (n > 0u) {
+        s = emcv_adaptive_load(p);
+        f = emcv_adaptive_tracked(p, scattered);
+        g = emcv_adaptive_tracked(p, unscattered);
     }
-    emcv_adaptive_update(p, scattered, unscattered, n, emcv_history_noise_ratio(pool));
+#if defined(EMCV_ADAPTIVE_CV)
+    if (gl_LocalInvocationIndex < 3u) tile_noise_pool[gl_LocalInvocationIndex] = 0u;
+    memoryBarrierShared();
+    barrier();
+    float term = n > 0u ? emcv_history_noise_term(s, f, g, EMCV_HISTORY_ETA_EMCM, float(n)) : emcv_history_no_variance();
+    uvec3 own = uvec3(0u);
+    emcv_history_noise_add(own, term, emcv_history_noise_relative(float(max(n, 1u))));
+    if (own.z != 0u) {
+        atomicAdd(tile_noise_pool[0], own.x);
+        atomicAdd(tile_noise_pool[1], own.y);
+        atomicAdd(tile_noise_pool[2], own.z);
+    }
+    memoryBarrierShared();
+    barrier();
+    uvec3 pool = uvec3(tile_noise_pool[0], tile_noise_pool[1], tile_noise_pool[2]);
+    emcv_adaptive_update(p, s, f, g, n, emcv_history_noise_ratio(pool));
 #else
-    emcv_adaptive_update(p, scattered, unscattered, n, 1.0f);
+    emcv_adaptive_update(p, s, f, g, n, 1.0f);
 #endif
 }
 #endif

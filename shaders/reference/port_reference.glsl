@@ -107,9 +107,9 @@ void main() {
     const float alpha = emcv_history_predicted_alpha(cov);
     const float residual_value = emcv_cv_residual(f, alpha, g);
     // cv's noise test over a pool of this pixel alone (the renderer pools over the pixel's 8x8 tile).
-    vec3 noise_pool = vec3(0.0f);
+    uvec3 noise_pool = uvec3(0u);
     emcv_history_noise_add(noise_pool, emcv_history_noise_term(cov, f, g, EMCV_HISTORY_ETA_EMCM, float(max(n, 1))),
-                           float(max(n, 1)));
+                           emcv_history_noise_relative(float(max(n, 1))));
     emcv_history_push_cv(cov, f, g, EMCV_HISTORY_ETA_EMCM, float(max(n, 1)));
     emcv_history_rescale_cv(cov, emcv_history_noise_ratio(noise_pool));
     emcv_moving_stats_push_batch(stats, f, EMCV_HISTORY_ETA_MOVING, float(max(n, 1)));

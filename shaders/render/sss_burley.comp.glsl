@@ -35,7 +35,6 @@ shared uint tile_sample_max;
 // What the history update of this invocation's pixel reads after the tile's noise test (scatter leaves it).
 vec3 pending_scattered = vec3(0.0f);
 vec3 pending_unscattered = vec3(0.0f);
-uint pending_code = 0u;
 #endif
 
 #if defined(EMCV_BURLEY_ADAPTIVE)
@@ -94,7 +93,6 @@ uint scatter(ivec2 p) {
     // pass this replaced used to read); main pushes it once the tile's noise test is done.
     pending_scattered = imageLoad(out_scattered, p).xyz;
     pending_unscattered = centre;
-    pending_code = code;
 #endif
     return n;
 }
@@ -108,7 +106,7 @@ void main() {
     ivec2 p = emcv_render_tile_pixel();
     uint n = scatter(p);
 #if defined(EMCV_BURLEY_ADAPTIVE)
-    emcv_adaptive_update_tile(p, pending_scattered, pending_unscattered, n, pending_code);
+    emcv_adaptive_update_tile(p, pending_scattered, pending_unscattered, n);
 #endif
     // Sample statistics reduced per tile in shared memory, then one global atomic per tile (not per pixel).
     atomicAdd(tile_sample_sum, n);

@@ -349,9 +349,10 @@ EMCV_FN bool emcv_history_push_cv(EMCV_INOUT(EmcvEmcm2) s, float f, float g, flo
 // frames while its own level hardly moves, and the budget keeps spending there. This frame's residual e
 // against the history's prediction measures the noise now: n e^2 / sigma^2 has mean rho, the ratio of this
 // frame's per-sample variance to the history's. One pixel's term is too noisy to act on (its relative variance
-// is r, emcv_history_frame_relative_variance), so it is averaged over the pixels of the same material in the
-// pixel's 8x8 tile; where that mean says the noise fell, the history's comoments are scaled down by the
-// estimated ratio (emcv_history_rescale_cv) instead of being forgotten at 1 - eta a frame.
+// is r, emcv_history_frame_relative_variance), so it is averaged over the scattering pixels of the pixel's 8x8
+// tile that have one (the term is relative to each pixel's own variance, so pixels of different materials and
+// levels measure the same ratio); where that mean says the noise fell, the history's comoments are scaled down by
+// the estimated ratio (emcv_history_rescale_cv) instead of being forgotten at 1 - eta a frame.
 
 /// The noise test, one pixel's term before its push: n e^2 / sigma^2 with e the residual move the change test
 /// reads, capped at emcv_history_change_z2() (a move beyond it is a change, which the push clips to that
@@ -367,13 +368,24 @@ EMCV_FN float emcv_history_noise_term(EMCV_IN(EmcvEmcm2) s, float f, float g, fl
     return min(z2, emcv_history_change_z2());
 }
 
-/// The noise test's pool, one pixel: adds its term and the term's relative variance r at its n
-/// (emcv_history_frame_relative_variance) to (sum of terms, sum of r, pixels) when it has a term. Pixels are
-/// visited row by row over the tile, on the GPU and in C++.
-EMCV_FN void emcv_history_noise_add(EMCV_INOUT(vec3) pool, float term, float n) {
+/// The relative variance of one pixel's noise-test term at its n: r = emcv_history_frame_relative_variance at the
+/// residual's kurtosis (the shrinkage's r, at this frame's n).
+EMCV_FN float emcv_history_noise_relative(float n) {
+    return emcv_history_frame_relative_variance(emcv_history_residual_kurtosis(), n);
+}
+
+/// The noise test's pool sums in fixed point, units of 2^-16, so that a sum is exact and the same in any order (the
+/// burley pass adds with shared-memory atomics, C++ in row order): a term is at most 25 and a relative variance at
+/// most 2 + 6.36 (n >= 1), at most 1.7e6 units each; 64 pixels stay under 1.1e8 < 2^32. A unit is far under either
+/// value's own noise.
+EMCV_FN uint emcv_history_noise_units(float x) { return uint(x * 65536.0f + 0.5f); }
+
+/// The noise test's pool, one pixel: adds its term and the term's relative variance (emcv_history_noise_relative),
+/// in units (emcv_history_noise_units), and 1 to (sum of terms, sum of relative variances, pixels) when it has a
+/// term.
+EMCV_FN void emcv_history_noise_add(EMCV_INOUT(uvec3) pool, float term, float relative) {
     if (!(term >= 0.0f)) return;
-    float r = emcv_history_frame_relative_variance(emcv_history_residual_kurtosis(), n);
-    pool = vec3(pool.x + term, pool.y + r, pool.z + 1.0f);
+    pool = uvec3(pool.x + emcv_history_noise_units(term), pool.y + emcv_history_noise_units(relative), pool.z + 1u);
 }
 
 /// The ratio a pool (emcv_history_noise_add) scales its pixels' comoments by: the mean term z estimates the
@@ -381,11 +393,12 @@ EMCV_FN void emcv_history_noise_add(EMCV_INOUT(vec3) pool, float term, float n) 
 /// the bias of the history is estimated without that noise, |rho - 1| = sqrt(max((z - 1)^2 - v, 0)) (the square of
 /// a noisy estimate exceeds the true square by its variance), and only a fall is acted on: 1 - that, in (0, 1].
 /// A rise is left to the change test, which clips it per pixel. 1 without terms.
-EMCV_FN float emcv_history_noise_ratio(EMCV_IN(vec3) pool) {
-    if (!(pool.z > 0.0f)) return 1.0f;
-    EMCV_PRECISE float z = pool.x / pool.z;
+EMCV_FN float emcv_history_noise_ratio(EMCV_IN(uvec3) pool) {
+    if (pool.z == 0u) return 1.0f;
+    float m = float(pool.z);
+    EMCV_PRECISE float z = float(pool.x) * (1.0f / 65536.0f) / m;
     if (!(z < 1.0f)) return 1.0f;
-    EMCV_PRECISE float v = pool.y / (pool.z * pool.z);
+    EMCV_PRECISE float v = float(pool.y) * (1.0f / 65536.0f) / (m * m);
     EMCV_PRECISE float bias2 = (z - 1.0f) * (z - 1.0f) - v;
     if (!(bias2 > 0.0f)) return 1.0f;
     return 1.0f - sqrt(bias2);
