@@ -83,8 +83,8 @@ RESTART = [
 ]
 NO_LEVEL_BIAS = [(HISTORY, "        s.count = emcv_history_count_for_frames(s.count, eta, trusted);\n",
                   "")]
-NO_NOISE_TEST = [(HISTORY, "    if (!(pool.z > 0.0f)) return 1.0f;\n    EMCV_PRECISE float z = pool.x / pool.z;\n",
-                  "    return 1.0f;\n    EMCV_PRECISE float z = pool.x / pool.z;\n")]
+NO_NOISE_TEST = [(HISTORY, "    if (pool.z == 0u) return 1.0f;\n    float m = float(pool.z);\n",
+                  "    return 1.0f;\n    float m = float(pool.z);\n")]
 # (name, shader edits, include edits)
 VARIANTS = [("neither", [], NO_LEVEL_BIAS + NO_NOISE_TEST), ("the level's bias", [], NO_NOISE_TEST),
             ("as built: + the tile's noise test", [], []), ("+ the pixel's light", BIAS, []),
