@@ -14,7 +14,7 @@ shaders/adaptive/samples.comp.glsl (through EMCV_SHADER_DIR); the script refuses
   level's bias leaves (emcv_history_push_cv, emcv_history_level_bias), and the budget's shrinkage weighs it by
   them; no noise test (emcv_history_noise_ratio always 1).
 - as built: the level's bias and the tile's noise test: each pixel's n e^2 / sigma^2 before its push, averaged over
-  its 8x8 tile's pixels of its material, estimates the ratio of the noise now to the history's; where it says the
+  its 8x8 tile's scattering pixels, estimates the ratio of the noise now to the history's; where it says the
   noise fell (beyond its sampling variance), the comoments are scaled by the ratio (emcv_history_noise_term,
   emcv_history_noise_ratio, emcv_history_rescale_cv).
 - + the pixel's light: as built, and also, under the model "a pixel's noise follows its light", a history
