@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: MIT
 """cv's allocation after a light change: without the level's bias and the tile's noise test, with the level's
-bias only, as built (both), with the pixel's light's change counted too, and with every history restarted at the
-change (docs/renderer.md, "After a change: the stale allocation").
+bias only, as built (both), with the pixel's light's change counted too, with the noise test's first ratio freed of
+the moving mean's error, with the trust or the whole history of a tile cut where its noise test fires, and with
+every history restarted at the change (docs/renderer.md, "After a change: the stale allocation").
 
 After a light change a pixel's per-sample variance still holds the old light's noise, which its exponential
 memory forgets at 1 - eta = 0.8 a frame, and the budget keeps following it. Each variant is this tree with a text
@@ -24,6 +25,16 @@ shaders/adaptive/samples.comp.glsl (through EMCV_SHADER_DIR); the script refuses
   error beside its sampling variance, r / K + delta^2, i.e. the shrinkage weighs 1 / (1 / K + delta^2 / r)
   frames. Unlike the level's bias it is known before the frame is sampled (G is this frame's). delta is 0
   wherever the light is still; it is capped at 1000 (a light switched on where mu_G was 0).
+- the mean's error taken out: as built, except that the pool's mean term is read less the part the moving mean's
+  own error adds to it, eta / (2 - eta) (the history's means are exponential averages of the old noise), and
+  where the ratio it then gives is under that same eta / (2 - eta) (the kept means would hold more error than this
+  frame's values) the means restart at this frame's (f, G) after the rescale.
+- trust cut where it fires: as built, and where the tile's ratio is under 1 the count is lowered to 2 effective
+  frames (emcv_history_count_for_frames), so that the budget's shrinkage pulls the rescaled variance towards the
+  frame's mean until new frames come in; the comoments still forget at 1 - eta.
+- restarted where it fires: as built, and where the tile's ratio is under 1 every scattering pixel of the tile
+  starts a fresh history with this frame (what the oracle below does at the change, but wherever and whenever the
+  noise test says the noise fell).
 - restarted at the change (an oracle: it knows the frame): as built, and every history starts fresh at frame
   CHANGE_FRAME, the first change of each scene that has one there; for scenes without a change at that frame it
   is left out.
@@ -81,6 +92,17 @@ RESTART = [
      f"    if (frame.counters.x == {CHANGE_FRAME}u) {{\n        s = emcv_adaptive_init();\n"
      "        emcv_adaptive_store(p, s);\n    } else if (emcv_adaptive_reproject(p, code, a, b, s, resampled) && !resampled) {\n"),
 ]
+UPDATE = "adaptive/history_io.h"
+RESCALE = "    emcv_history_rescale_cv(s, noise_ratio);\n"
+MEAN_ERROR = "(EMCV_HISTORY_ETA_EMCM / (2.0f - EMCV_HISTORY_ETA_EMCM))"
+MEAN_ERROR_OUT = (
+    [(HISTORY, "    EMCV_PRECISE float z = float(pool.x) * (1.0f / 65536.0f) / m;\n",
+      f"    EMCV_PRECISE float z = float(pool.x) * (1.0f / 65536.0f) / m - {MEAN_ERROR};\n")],
+    [(UPDATE, RESCALE, RESCALE + f"    if (noise_ratio < {MEAN_ERROR}) s.mean = vec2(f, g);\n")])
+TRUST_CUT = [(UPDATE, RESCALE, RESCALE + "    if (noise_ratio < 1.0f)\n"
+              "        s.count = emcv_history_count_for_frames(s.count, EMCV_HISTORY_ETA_EMCM, 2.0f);\n")]
+RESTART_FIRED = [(UPDATE, RESCALE, RESCALE + "    if (noise_ratio < 1.0f) {\n        s = emcv_adaptive_init();\n"
+                  "        emcv_history_push_cv(s, f, g, EMCV_HISTORY_ETA_EMCM, float(n));\n    }\n")]
 NO_LEVEL_BIAS = [(HISTORY, "        s.count = emcv_history_count_for_frames(s.count, eta, trusted);\n",
                   "")]
 NO_NOISE_TEST = [(HISTORY, "    if (pool.z == 0u) return 1.0f;\n    float m = float(pool.z);\n",
@@ -88,6 +110,8 @@ NO_NOISE_TEST = [(HISTORY, "    if (pool.z == 0u) return 1.0f;\n    float m = fl
 # (name, shader edits, include edits)
 VARIANTS = [("neither", [], NO_LEVEL_BIAS + NO_NOISE_TEST), ("the level's bias", [], NO_NOISE_TEST),
             ("as built: + the tile's noise test", [], []), ("+ the pixel's light", BIAS, []),
+            ("the mean's error taken out", MEAN_ERROR_OUT[1], MEAN_ERROR_OUT[0]),
+            ("trust cut where it fires", TRUST_CUT, []), ("restarted where it fires", RESTART_FIRED, []),
             ("restarted at the change (oracle)", RESTART, [])]
 ORACLE = VARIANTS[-1][0]
 BUILT = VARIANTS[2][0]  # burley-B reads no adaptive shader: it runs once, under this variant
