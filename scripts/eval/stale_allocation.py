@@ -8,7 +8,7 @@ every history restarted at the change (docs/renderer.md, "After a change: the st
 After a light change a pixel's per-sample variance still holds the old light's noise, which its exponential
 memory forgets at 1 - eta = 0.8 a frame, and the budget keeps following it. Each variant is this tree with a text
 replacement in include/emcv/port/history.h (a copy read through EMCV_INCLUDE_DIR) or in
-shaders/adaptive/samples.comp.glsl (through EMCV_SHADER_DIR); the script refuses when an anchor is no longer there:
+shaders/adaptive/samples.comp.glsl or shaders/adaptive/history_io.h (through EMCV_SHADER_DIR); the script refuses when an anchor is no longer there:
 
 - neither: cv's push never lowers the count and never rescales the comoments (the rule before either was built).
 - the level's bias: where f's level moves beyond 5 sigma, the push lowers the history's count to the frames its
@@ -32,7 +32,7 @@ shaders/adaptive/samples.comp.glsl (through EMCV_SHADER_DIR); the script refuses
 - trust cut where it fires: as built, and where the tile's ratio is under 1 the count is lowered to 2 effective
   frames (emcv_history_count_for_frames), so that the budget's shrinkage pulls the rescaled variance towards the
   frame's mean until new frames come in; the comoments still forget at 1 - eta.
-- restarted where it fires: as built, and where the tile's ratio is under 1 every scattering pixel of the tile
+- restarted where it fires: as built, and where the tile's ratio is under 1 every pixel of the tile that took samples
   starts a fresh history with this frame (what the oracle below does at the change, but wherever and whenever the
   noise test says the noise fell).
 - restarted at the change (an oracle: it knows the frame): as built, and every history starts fresh at frame
@@ -95,10 +95,9 @@ RESTART = [
 UPDATE = "adaptive/history_io.h"
 RESCALE = "    emcv_history_rescale_cv(s, noise_ratio);\n"
 MEAN_ERROR = "(EMCV_HISTORY_ETA_EMCM / (2.0f - EMCV_HISTORY_ETA_EMCM))"
-MEAN_ERROR_OUT = (
-    [(HISTORY, "    EMCV_PRECISE float z = float(pool.x) * (1.0f / 65536.0f) / m;\n",
-      f"    EMCV_PRECISE float z = float(pool.x) * (1.0f / 65536.0f) / m - {MEAN_ERROR};\n")],
-    [(UPDATE, RESCALE, RESCALE + f"    if (noise_ratio < {MEAN_ERROR}) s.mean = vec2(f, g);\n")])
+MEAN_ERROR_OUT_RATIO = [(HISTORY, "    EMCV_PRECISE float z = float(pool.x) * (1.0f / 65536.0f) / m;\n",
+                         f"    EMCV_PRECISE float z = float(pool.x) * (1.0f / 65536.0f) / m - {MEAN_ERROR};\n")]
+MEAN_ERROR_OUT_MEANS = [(UPDATE, RESCALE, RESCALE + f"    if (noise_ratio < {MEAN_ERROR}) s.mean = vec2(f, g);\n")]
 TRUST_CUT = [(UPDATE, RESCALE, RESCALE + "    if (noise_ratio < 1.0f)\n"
               "        s.count = emcv_history_count_for_frames(s.count, EMCV_HISTORY_ETA_EMCM, 2.0f);\n")]
 RESTART_FIRED = [(UPDATE, RESCALE, RESCALE + "    if (noise_ratio < 1.0f) {\n        s = emcv_adaptive_init();\n"
@@ -110,7 +109,7 @@ NO_NOISE_TEST = [(HISTORY, "    if (pool.z == 0u) return 1.0f;\n    float m = fl
 # (name, shader edits, include edits)
 VARIANTS = [("neither", [], NO_LEVEL_BIAS + NO_NOISE_TEST), ("the level's bias", [], NO_NOISE_TEST),
             ("as built: + the tile's noise test", [], []), ("+ the pixel's light", BIAS, []),
-            ("the mean's error taken out", MEAN_ERROR_OUT[1], MEAN_ERROR_OUT[0]),
+            ("the mean's error taken out", MEAN_ERROR_OUT_MEANS, MEAN_ERROR_OUT_RATIO),
             ("trust cut where it fires", TRUST_CUT, []), ("restarted where it fires", RESTART_FIRED, []),
             ("restarted at the change (oracle)", RESTART, [])]
 ORACLE = VARIANTS[-1][0]
