@@ -74,6 +74,12 @@ inline const method_row& row_of(const method& m) { return row_of(m.type); }
 /// True for the methods that choose N per pixel from a history (spvg, cv, cv-notex).
 inline bool is_adaptive(const method& m) { return row_of(m).passes == sss_passes::adaptive; }
 
+/// True for the methods whose SSS is a Monte Carlo estimate (the burley pass: burley-N, reference and the
+/// adaptive methods): their output carries noise, which the burley pass stores beside it for the resolve.
+inline bool samples_randomly(const method& m) {
+    return row_of(m).passes == sss_passes::burley || row_of(m).passes == sss_passes::adaptive;
+}
+
 /// Default sample counts.
 inline constexpr int default_separable_taps = 17;
 inline constexpr int default_reference_samples = 1024;

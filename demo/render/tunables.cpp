@@ -32,6 +32,8 @@ const std::vector<tunable>& tunables() {
          EMCV_RESOLVE_BLEND},
         {"EMCV_RESOLVE_CLIP_SIGMA", t::real, 0.0, 4.0, true, "temporal resolve: clip box half-width in std devs",
          EMCV_RESOLVE_CLIP_SIGMA},
+        {"EMCV_RESOLVE_NOISE_SIGMA", t::real, 0.0, 16.0, true,
+         "temporal resolve: noise box half-width in std devs of the frame's noise", EMCV_RESOLVE_NOISE_SIGMA},
     };
     return all;
 }

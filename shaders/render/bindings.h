@@ -33,6 +33,7 @@
 #define EMCV_RENDER_TEX_MOTION 17      // motion in pixels, current - previous (RG16F)
 #define EMCV_RENDER_TEX_RESOLVE_CURRENT 18  // resolve: the composite's linear HDR image
 #define EMCV_RENDER_TEX_RESOLVE_HISTORY 19  // resolve: last frame's resolved display values and view depth
+#define EMCV_RENDER_TEX_SSS_COUNT 20       // resolve: samples per pixel (R32UI) of this frame's burley pass
 
 // Images written by compute passes: image units are their own small space (0..7, EMCV_MAX_IMAGE_UNITS in
 // emcv/port/bindings.h; NVIDIA has 8), so passes that never run together share units, and each pass binds its
@@ -61,6 +62,7 @@
 #define EMCV_RENDER_FLAG_APPROXIMATE_CDF 2u // Burley radii from SPVG's approximation
 #define EMCV_RENDER_FLAG_SSS_TILES 4u       // SSS passes follow: the lighting pass lists the SSS tiles
 #define EMCV_RENDER_FLAG_JITTER 8u          // the camera jitters (--jitter): the resolve's history test is the neighbourhood's
+#define EMCV_RENDER_FLAG_SSS_NOISE 16u      // the burley pass ran (samples_randomly): SSS output alpha = emcv_sss_noise
 
 #define EMCV_RENDER_MAX_SEPARABLE_TAPS 25
 

@@ -9,12 +9,16 @@
 // where its stored view depth shows this surface, emcv_resolve_same_surface; less than half of the kernel's weight
 // there: reset to the current value), clipped to the neighbourhood's box in YCoCg towards the current value
 // filtered over its 3x3 neighbours (emcv_resolve_filter_weight) with the detail the history's own 3x3
-// neighbourhood shows put back (emcv_resolve_target), and blended (include/emcv/port/resolve.h). The history keeps
+// neighbourhood shows put back (emcv_resolve_target), and blended (include/emcv/port/resolve.h). Without jitter
+// the box is first narrowed to this frame's own noise, which the SSS pass stores beside its estimate
+// (emcv_resolve_narrow_to_noise): a history is kept only as far from this frame as its noise could take it, and
+// a pixel nothing sampled shows this frame's value. The history keeps
 // the resolved value and the pixel's view depth (0 for the background, which is never blended: it does not
 // change).
 #version 450 core
 
 #include "emcv/port/resolve.h"
+#include "emcv/port/sss.h"
 #include "emcv/port/tonemap.h"
 #include "render/gbuffer_read.h"
 
@@ -25,8 +29,13 @@ layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_RESOLVE_HISTORY)) uniform sampler2D h
 layout(rgba32f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_RESOLVE_HISTORY)) writeonly uniform image2D history_out;
 layout(rgba8, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_RESOLVED)) writeonly uniform image2D resolved_out;
 
+// This frame's SSS output, whose alpha holds its noise (emcv_sss_noise), and the samples each pixel took.
+layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_SSS_IN)) uniform sampler2D scattered_noise;
+layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_SSS_COUNT)) uniform usampler2D sample_counts;
+
 #define APRON_SIDE (EMCV_RENDER_TILE_SIZE + 2)
 shared vec3 tile_ycocg[APRON_SIDE * APRON_SIDE];
+shared float tile_noise[APRON_SIDE * APRON_SIDE];
 
 bool jitters() { return (frame.counters.w & EMCV_RENDER_FLAG_JITTER) != 0u; }
 
@@ -40,6 +49,48 @@ vec3 resolved_part(ivec2 q) {
     vec3 linear = texelFetch(current_linear, q, 0).xyz;
     if (!jitters()) linear -= texelFetch(lit_specular, q, 0).xyz;
     return linear;
+}
+
+/// This frame's noise code at q (clamped to the screen; emcv_sss_noise): what the stochastic SSS pass stored at
+/// a pixel that scatters, exact everywhere else and for every pixel when no such pass ran (diffuse, separable:
+/// nothing in the image is sampled).
+float noise_at(ivec2 q) {
+    q = clamp(q, ivec2(0), ivec2(frame.viewport.xy) - 1);
+    if ((frame.counters.w & EMCV_RENDER_FLAG_SSS_NOISE) == 0u || !emcv_render_scatters(emcv_render_material_code(q)))
+        return emcv_sss_noise_exact();
+    return texelFetch(scattered_noise, q, 0).w;
+}
+
+/// The YCoCg half-widths of the noise box at p (tile position `local`): EMCV_RESOLVE_NOISE_SIGMA standard
+/// deviations of this frame's estimate, the per-sample variance pooled over the 3x3 neighbours divided by p's
+/// own samples (emcv_resolve_pooled_noise), scaled by the albedo (the composite multiplies the scattered light
+/// by it) and carried through the display encoding at the current value. False where no box applies (no
+/// neighbour's noise known).
+bool noise_extent(ivec2 p, ivec2 local, out vec3 extent) {
+    extent = vec3(0.0f);
+    float own = tile_noise[local.x + local.y * APRON_SIDE];
+    float variance = 0.0f;
+    if (own != emcv_sss_noise_exact()) {
+        float sum = 0.0f, known = 0.0f;
+        for (int dy = -1; dy <= 1; ++dy) {
+            for (int dx = -1; dx <= 1; ++dx) {
+                float v = tile_noise[(local.x + dx) + (local.y + dy) * APRON_SIDE];
+                if (v >= 0.0f) {
+                    sum += v;
+                    known += 1.0f;
+                }
+            }
+        }
+        variance = emcv_resolve_pooled_noise(sum, known, texelFetch(sample_counts, p, 0).x);
+        if (variance < 0.0f) return false;
+    }
+    vec3 part = resolved_part(p);
+    vec3 deviation = float(EMCV_RESOLVE_NOISE_SIGMA) * sqrt(variance) * texelFetch(gbuffer_albedo, p, 0).xyz;
+    int tonemap = int(frame.ambient.w);
+    float exposure = frame.background.w;
+    extent = emcv_resolve_ycocg_extent(emcv_display_encode((part + deviation) * exposure, tonemap) -
+                                       emcv_display_encode(part * exposure, tonemap));
+    return true;
 }
 
 /// A linear colour as the display shows it, in YCoCg.
@@ -122,6 +173,7 @@ void main() {
     for (uint i = gl_LocalInvocationIndex; i < uint(APRON_SIDE * APRON_SIDE); i += uint(EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE)) {
         ivec2 q = origin + ivec2(int(i) % APRON_SIDE, int(i) / APRON_SIDE);
         tile_ycocg[i] = display_ycocg(resolved_part(q));
+        if (!jitters()) tile_noise[i] = noise_at(q);
         if (jitters()) tile_previous_depth[i] = previous_depth_at(q);
     }
     barrier();
@@ -146,6 +198,10 @@ void main() {
         }
         vec3 lo, hi;
         emcv_resolve_clip_box(sum, sum_squares, 9.0f, current, lo, hi);
+        // Without jitter the box is also narrowed to this frame's own noise: under jitter the history also
+        // anti-aliases, a difference from this frame that the SSS pass's noise does not measure.
+        vec3 extent;
+        if (!jitters() && noise_extent(p, local, extent)) emcv_resolve_narrow_to_noise(current, extent, lo, hi);
         vec3 spread = emcv_resolve_variance(sum, sum_squares, 9.0f);
         vec3 detailed = emcv_resolve_target(current, filtered, spread, history_variance);
         vec3 target = emcv_resolve_clip(detailed, current, lo, hi);

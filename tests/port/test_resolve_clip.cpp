@@ -6,6 +6,7 @@
 // 8-bit step wide. Also the target filter's weights.
 #include <catch2/catch_test_macros.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -154,4 +155,56 @@ TEST_CASE("resolve clip target: the fraction D / S is the gain that minimises th
     }
     CHECK(at[1] < at[0]);
     CHECK(at[1] < at[2]);
+}
+
+TEST_CASE("resolve noise box: the YCoCg extent holds the deviation under every sign of its channels, and is tight") {
+    // One estimate's channels move together or apart; the box must hold d with any signs (s_r d_r, s_g d_g,
+    // s_b d_b) in YCoCg, and no narrower box does: some sign pattern reaches each half-width.
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> deviation(-0.2f, 0.2f);
+    for (int trial = 0; trial < 200; ++trial) {
+        const glm::vec3 d(deviation(rng), deviation(rng), deviation(rng));
+        const glm::vec3 extent = port::emcv_resolve_ycocg_extent(d);
+        glm::vec3 reached(0.0f);
+        for (int signs = 0; signs < 8; ++signs) {
+            const glm::vec3 s((signs & 1) ? -1.0f : 1.0f, (signs & 2) ? -1.0f : 1.0f, (signs & 4) ? -1.0f : 1.0f);
+            const glm::vec3 y = glm::abs(port::emcv_rgb_to_ycocg(s * d));
+            for (int c = 0; c < 3; ++c) {
+                CHECK(y[c] <= extent[c] + 1e-7f);
+                reached[c] = std::max(reached[c], y[c]);
+            }
+        }
+        for (int c = 0; c < 3; ++c) CHECK(std::abs(reached[c] - extent[c]) <= 1e-6f);
+    }
+}
+
+TEST_CASE("resolve noise box: narrowing keeps the current value and stays inside both boxes") {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> value(-0.5f, 0.5f), width(0.0f, 0.2f);
+    for (int trial = 0; trial < 200; ++trial) {
+        const glm::vec3 current(value(rng), value(rng), value(rng));
+        glm::vec3 lo = current - glm::vec3(width(rng), width(rng), width(rng));
+        glm::vec3 hi = current + glm::vec3(width(rng), width(rng), width(rng));
+        const glm::vec3 lo0 = lo, hi0 = hi;
+        const glm::vec3 extent(width(rng), width(rng), width(rng));
+        port::emcv_resolve_narrow_to_noise(current, extent, lo, hi);
+        for (int c = 0; c < 3; ++c) {
+            CHECK(lo[c] <= current[c]);
+            CHECK(hi[c] >= current[c]);
+            CHECK(lo[c] == std::max(lo0[c], current[c] - extent[c]));
+            CHECK(hi[c] == std::min(hi0[c], current[c] + extent[c]));
+        }
+    }
+    // Without noise the box closes on the current value; the clip still keeps half an 8-bit step around it.
+    glm::vec3 lo(0.0f), hi(1.0f);
+    const glm::vec3 current(0.4f, 0.1f, -0.1f);
+    port::emcv_resolve_narrow_to_noise(current, glm::vec3(0.0f), lo, hi);
+    const glm::vec3 kept = port::emcv_resolve_clip(glm::vec3(0.9f, 0.3f, 0.2f), current, lo, hi);
+    for (int c = 0; c < 3; ++c) CHECK(std::abs(kept[c] - current[c]) <= half_step + 1e-7f);
+}
+
+TEST_CASE("resolve noise box: the pooled variance is the neighbours' mean per-sample variance over the pixel's samples") {
+    CHECK(port::emcv_resolve_pooled_noise(0.9f, 3.0f, 4u) == 0.9f / 12.0f);  // three neighbours knew, 4 samples
+    CHECK(port::emcv_resolve_pooled_noise(0.9f, 3.0f, 0u) == 0.0f);          // no samples: the value is exact
+    CHECK(port::emcv_resolve_pooled_noise(0.0f, 0.0f, 8u) < 0.0f);           // nobody knows: no noise box
 }

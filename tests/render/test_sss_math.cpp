@@ -2,8 +2,11 @@
 // The renderer's per-pixel SSS maths (include/emcv/port/sss.h) and the separable kernel, on the CPU.
 #include <catch2/catch_test_macros.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <random>
+#include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -93,6 +96,90 @@ TEST_CASE("the Burley marginal's tail matches Monte Carlo") {
         CHECK(std::abs(p - p_mc) < 4.0 * std::sqrt(p * (1.0 - p) / n) + 1e-4);
     }
     CHECK(std::abs(emcv::demo::burley_marginal_tail(0.0, d) - 0.5) < 1e-6);
+}
+
+namespace {
+
+/// The sums the burley pass keeps over its samples (w, L per channel), and emcv_sss_noise's inputs from them.
+struct noise_sums {
+    vec3 w{0.0f}, wl{0.0f}, w2{0.0f}, w2l{0.0f}, w2l2{0.0f};
+    void add(vec3 weight, vec3 value) {
+        w += weight;
+        wl += weight * value;
+        w2 += weight * weight;
+        w2l += weight * weight * value;
+        w2l2 += weight * weight * value * value;
+    }
+    vec3 estimate() const { return wl / w; }
+};
+
+}  // namespace
+
+TEST_CASE("this frame's noise: the ratio estimate's per-sample variance from the pass's sums") {
+    // The delta method's variance of R = sum(w L) / sum(w) written directly from the residuals, two passes over
+    // the samples: n^2 / (n - 1) sum w_i^2 (L_i - R)^2 / (sum w)^2. The pass expands the square into three sums
+    // (one pass, no stored samples); the two must agree to float rounding.
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> weight(0.0f, 3.0f), value(0.0f, 2.0f);
+    for (unsigned n : {2u, 5u, 16u}) {
+        std::vector<vec3> w(n), l(n);
+        noise_sums sums;
+        for (unsigned i = 0; i < n; ++i) {
+            w[i] = vec3(weight(rng), weight(rng), weight(rng));
+            l[i] = vec3(value(rng), value(rng), value(rng));
+            sums.add(w[i], l[i]);
+        }
+        const vec3 r = sums.estimate();
+        const vec3 v = emcv_sss_sample_variance(sums.w, sums.w2, sums.w2l, sums.w2l2, r, n);
+        float largest = 0.0f;
+        for (int c = 0; c < 3; ++c) {
+            double squares = 0.0;
+            for (unsigned i = 0; i < n; ++i) squares += double(w[i][c] * w[i][c]) * std::pow(double(l[i][c] - r[c]), 2.0);
+            const double direct = double(n) * double(n) / double(n - 1) * squares / std::pow(double(sums.w[c]), 2.0);
+            INFO("n " << n << " channel " << c << ": pass " << v[c] << ", direct " << direct);
+            CHECK(std::abs(double(v[c]) - direct) <= 1e-4 * direct + 1e-6);
+            largest = std::max(largest, v[c]);
+        }
+        CHECK(emcv_sss_noise(sums.w, sums.w2, sums.w2l, sums.w2l2, r, n) == largest);  // the largest channel
+    }
+}
+
+TEST_CASE("this frame's noise: with equal weights it is the unbiased sample variance, whose mean is the variance") {
+    // With w = 1 the estimate is the sample mean and the per-sample variance is s^2 = sum (L - mean)^2 / (n - 1),
+    // unbiased: E[s^2] = sigma^2. L uniform on [0, 1): sigma^2 = 1 / 12, mu4 = 1 / 80, and
+    // Var(s^2) = (mu4 - sigma^4 (n - 3) / (n - 1)) / n, so the mean of M independent s^2 has standard deviation
+    // sqrt(Var(s^2) / M); it must lie within 5 of them of 1 / 12. Without the n / (n - 1) it would sit at
+    // (n - 1) / n of it (0.073 for n = 8, 44 standard deviations off).
+    const unsigned n = 8;
+    const int trials = 20000;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> value(0.0f, 1.0f);
+    double mean = 0.0;
+    for (int t = 0; t < trials; ++t) {
+        noise_sums sums;
+        for (unsigned i = 0; i < n; ++i) sums.add(vec3(1.0f), vec3(value(rng)));
+        mean += double(emcv_sss_noise(sums.w, sums.w2, sums.w2l, sums.w2l2, sums.estimate(), n)) / trials;
+    }
+    const double sigma2 = 1.0 / 12.0, mu4 = 1.0 / 80.0;
+    const double sd = std::sqrt((mu4 - sigma2 * sigma2 * (n - 3.0) / (n - 1.0)) / n / trials);
+    INFO("mean of s^2 " << mean << ", sigma^2 " << sigma2 << ", standard deviation of the mean " << sd);
+    CHECK(std::abs(mean - sigma2) <= 5.0 * sd);
+}
+
+TEST_CASE("this frame's noise: exact without samples, unknown from one sample or a channel that accepted none") {
+    noise_sums none;
+    CHECK(emcv_sss_noise(none.w, none.w2, none.w2l, none.w2l2, vec3(0.3f), 0u) == emcv_sss_noise_exact());
+    noise_sums one;
+    one.add(vec3(1.0f), vec3(0.5f));
+    CHECK(emcv_sss_noise(one.w, one.w2, one.w2l, one.w2l2, one.estimate(), 1u) == emcv_sss_noise_unknown());
+    noise_sums blue_rejected;  // every sample's blue weight 0: the blue channel keeps the pixel's own irradiance
+    blue_rejected.add(vec3(1.0f, 1.0f, 0.0f), vec3(0.2f));
+    blue_rejected.add(vec3(1.0f, 2.0f, 0.0f), vec3(0.6f));
+    CHECK(emcv_sss_noise(blue_rejected.w, blue_rejected.w2, blue_rejected.w2l, blue_rejected.w2l2, vec3(0.4f), 2u) ==
+          emcv_sss_noise_unknown());
+    CHECK(emcv_sss_noise_exact() < 0.0f);  // both codes are below every variance, which the resolve pools
+    CHECK(emcv_sss_noise_unknown() < 0.0f);
+    CHECK(emcv_sss_noise_exact() != emcv_sss_noise_unknown());
 }
 
 TEST_CASE("separable kernels put the centre first with symmetric offsets and unit channel sums and spread wider channels more") {

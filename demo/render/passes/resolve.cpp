@@ -11,6 +11,8 @@ void resolve(const frame_context& c) {
     const gpu_resources& r = c.res;
     c.programs.resolve.use();
     glBindTextureUnit(EMCV_RENDER_TEX_RESOLVE_CURRENT, r.linear_out.id());
+    glBindTextureUnit(EMCV_RENDER_TEX_SSS_IN, r.sss_out.id());
+    glBindTextureUnit(EMCV_RENDER_TEX_SSS_COUNT, r.counts.id());
     glBindTextureUnit(EMCV_RENDER_TEX_RESOLVE_HISTORY, r.resolve_history_previous.id());
     glBindImageTexture(EMCV_RENDER_IMG_RESOLVE_HISTORY, r.resolve_history.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glBindImageTexture(EMCV_RENDER_IMG_RESOLVED, r.resolved_display.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);

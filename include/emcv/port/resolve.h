@@ -31,6 +31,16 @@
 
 EMCV_PORT_BEGIN
 
+/// Half-width of the noise box (emcv_resolve_narrow_to_noise) in standard deviations of this frame's own noise.
+/// A history that this frame's expectation agrees with is clipped only where this frame's deviation exceeds
+/// that many standard deviations: under a normal noise on 0.3% of frames per channel, and by Chebyshev's bound
+/// on at most 1 / 3^2 = 11% whatever the noise's distribution (Burley samples are heavy-tailed). The standard
+/// deviation is the renderer's estimate from one frame's samples, which overestimates the stratified
+/// sampling's (docs/frame.md). Range (0, 16].
+#ifndef EMCV_RESOLVE_NOISE_SIGMA
+#define EMCV_RESOLVE_NOISE_SIGMA 3.0f
+#endif
+
 /// RGB to YCoCg (luma, orange and green chroma): an exact, invertible basis in which a box around the
 /// neighbourhood follows its luma and its hue separately.
 EMCV_FN vec3 emcv_rgb_to_ycocg(EMCV_IN(vec3) c) {
@@ -61,6 +71,38 @@ EMCV_FN void emcv_resolve_clip_box(EMCV_IN(vec3) sum, EMCV_IN(vec3) sum_squares,
     vec3 deviation = sqrt(emcv_resolve_variance(sum, sum_squares, n));
     lo = min(mean - float(EMCV_RESOLVE_CLIP_SIGMA) * deviation, current);
     hi = max(mean + float(EMCV_RESOLVE_CLIP_SIGMA) * deviation, current);
+}
+
+/// The YCoCg half-widths of a box that holds a display-space RGB deviation `rgb_deviation` whatever the signs its
+/// channels take (|M| |d| for the YCoCg matrix M): the channels of one estimate move together, in one direction
+/// or apart, and a box for either holds both.
+EMCV_FN vec3 emcv_resolve_ycocg_extent(EMCV_IN(vec3) rgb_deviation) {
+    vec3 d = abs(rgb_deviation);
+    float luma_like = 0.25f * d.x + 0.5f * d.y + 0.25f * d.z;  // Y's and Cg's weights are the same in magnitude
+    return vec3(luma_like, 0.5f * (d.x + d.z), luma_like);
+}
+
+/// The per-sample variance of this frame's SSS estimate at a pixel that took n samples, pooled over its 3x3
+/// neighbourhood: `sum` of the `known` neighbours' per-sample variances (emcv_sss_noise >= 0), divided by
+/// `known` and by n. Neighbouring pixels' kernels cover nearly the same surface, so their per-sample variances
+/// estimate one quantity; the mean of nine is steadier than one pixel's (whose few samples may all miss a bright
+/// region its kernel reaches: an underestimate). Negative (no noise box) when no neighbour knows; 0 for n = 0.
+EMCV_FN float emcv_resolve_pooled_noise(float sum, float known, uint n) {
+    if (n == 0u) return 0.0f;
+    return known > 0.0f ? sum / (known * float(n)) : -1.0f;
+}
+
+/// The clip box [lo, hi] narrowed to this frame's own noise: to current -+ extent (emcv_resolve_ycocg_extent of
+/// EMCV_RESOLVE_NOISE_SIGMA of its standard deviations). The neighbourhood's box holds detail besides noise, so
+/// at an edge or relief under a moving camera it is wide and keeps a resampled history whose error is no noise
+/// of this frame; the noise box keeps a history only as far from this frame's value as this frame's noise could
+/// take it. Where the frame has no noise (a pixel that does not scatter, a method without sampling) the box
+/// closes on the current value (emcv_resolve_clip keeps half an 8-bit step) and the resolve shows the frame as
+/// it is. Both boxes hold the current value, so the narrowed one does too.
+EMCV_FN void emcv_resolve_narrow_to_noise(EMCV_IN(vec3) current, EMCV_IN(vec3) extent, EMCV_INOUT(vec3) lo,
+                                          EMCV_INOUT(vec3) hi) {
+    lo = max(lo, current - extent);
+    hi = min(hi, current + extent);
 }
 
 /// The history moved along the line towards `target`, a colour inside the box [lo, hi], until it lies in the box

@@ -17,6 +17,9 @@
 //            vec2 u = emcv_sss_sample_uv(i, emcv_sss_rotation(px, py, frame, seed));
 //            float r = emcv_sss_sample_radius(u.x, dmax, approximate);
 //            vec3 w = emcv_sss_weight(r, emcv_sss_depth_aware_radius(r, dz_mm), d, dmax);
+//            This frame's noise of the estimate, for the temporal resolve (docs/frame.md, "Temporal resolve"):
+//            the pass also sums w^2, w^2 L and w^2 L^2 over its samples and stores
+//            emcv_sss_noise(sum_w, sum_w2, sum_w2l, sum_w2l2, estimate, n).
 #ifndef EMCV_PORT_SSS_H
 #define EMCV_PORT_SSS_H
 
@@ -86,6 +89,38 @@ EMCV_FN vec3 emcv_sss_weight(float r_mm, float r_e_mm, vec3 d, float d_sample) {
     float rcp_pdf = 1.0f / emcv_burley_pdf(r_mm, d_sample);
     return vec3(emcv_burley_profile_r(r_e_mm, d.x), emcv_burley_profile_r(r_e_mm, d.y),
                 emcv_burley_profile_r(r_e_mm, d.z)) * rcp_pdf;
+}
+
+/// emcv_sss_noise's code for an estimate without noise: no sample taken (a kernel narrower than a pixel keeps
+/// the pixel's own irradiance, exactly).
+EMCV_FN float emcv_sss_noise_exact() { return -2.0f; }
+
+/// emcv_sss_noise's code for an estimate whose noise one frame cannot tell: fewer than two samples, or a
+/// channel that accepted none.
+EMCV_FN float emcv_sss_noise_unknown() { return -1.0f; }
+
+/// Per channel, the per-sample variance of the ratio estimate R = sum(w L) / sum(w) over n samples, from the
+/// sums the sampling loop keeps: the delta method's variance of a ratio estimator (Cochran 1977, 6.3),
+///     Var(R) ~ sum w_i^2 (L_i - R)^2 / (sum w)^2,
+/// times n / (n - 1) for the degree of freedom R takes from its own residuals, and times n per sample. The
+/// square is expanded, sum w^2 L^2 - 2 R sum w^2 L + R^2 sum w^2, floored at 0 (rounding). The samples are
+/// treated as independent: the renderer's stratified (rotated R2) samples vary less than that, so this
+/// overestimates their noise (docs/frame.md). Needs n >= 2 and sum_w > 0 in every channel.
+EMCV_FN vec3 emcv_sss_sample_variance(vec3 sum_w, vec3 sum_w2, vec3 sum_w2l, vec3 sum_w2l2, vec3 estimate, uint n) {
+    vec3 squares = max(sum_w2l2 - 2.0f * estimate * sum_w2l + estimate * estimate * sum_w2, vec3(0.0f));
+    float nf = float(n);
+    return (nf * nf / (nf - 1.0f)) * squares / (sum_w * sum_w);
+}
+
+/// The noise code a pass stores beside its estimate (one float): the largest channel's per-sample variance
+/// (emcv_sss_sample_variance), emcv_sss_noise_exact() for n = 0, emcv_sss_noise_unknown() when one frame
+/// cannot tell. The largest channel: the resolve applies one deviation to every channel, and a box too wide
+/// keeps noise where one too narrow would drop a good history.
+EMCV_FN float emcv_sss_noise(vec3 sum_w, vec3 sum_w2, vec3 sum_w2l, vec3 sum_w2l2, vec3 estimate, uint n) {
+    if (n == 0u) return emcv_sss_noise_exact();
+    if (n < 2u || !(sum_w.x > 0.0f && sum_w.y > 0.0f && sum_w.z > 0.0f)) return emcv_sss_noise_unknown();
+    vec3 v = emcv_sss_sample_variance(sum_w, sum_w2, sum_w2l, sum_w2l2, estimate, n);
+    return max(v.x, max(v.y, v.z));
 }
 
 EMCV_PORT_END
