@@ -62,10 +62,10 @@ float noise_at(ivec2 q) {
 }
 
 /// The YCoCg half-widths of the noise box at p (tile position `local`): EMCV_RESOLVE_NOISE_SIGMA standard
-/// deviations of this frame's estimate, the per-sample variance pooled over the 3x3 neighbours divided by p's
-/// own samples (emcv_resolve_pooled_noise), scaled by the albedo (the composite multiplies the scattered light
-/// by it) and carried through the display encoding at the current value. False where no box applies (no
-/// neighbour's noise known).
+/// deviations of this frame's estimate, from p's own per-sample variance and its 3x3 neighbours'
+/// (emcv_resolve_pooled_noise) over p's samples, scaled by the albedo (the composite multiplies the scattered
+/// light by it) and carried through the display encoding at the current value. False where no box applies
+/// (p's own noise unknown).
 bool noise_extent(ivec2 p, ivec2 local, out vec3 extent) {
     extent = vec3(0.0f);
     float own = tile_noise[local.x + local.y * APRON_SIDE];
@@ -81,7 +81,7 @@ bool noise_extent(ivec2 p, ivec2 local, out vec3 extent) {
                 }
             }
         }
-        variance = emcv_resolve_pooled_noise(sum, known, texelFetch(sample_counts, p, 0).x);
+        variance = emcv_resolve_pooled_noise(own, sum, known, texelFetch(sample_counts, p, 0).x);
         if (variance < 0.0f) return false;
     }
     vec3 part = resolved_part(p);

@@ -203,8 +203,9 @@ TEST_CASE("resolve noise box: narrowing keeps the current value and stays inside
     for (int c = 0; c < 3; ++c) CHECK(std::abs(kept[c] - current[c]) <= half_step + 1e-7f);
 }
 
-TEST_CASE("resolve noise box: the pooled variance is the neighbours' mean per-sample variance over the pixel's samples") {
-    CHECK(port::emcv_resolve_pooled_noise(0.9f, 3.0f, 4u) == 0.9f / 12.0f);  // three neighbours knew, 4 samples
-    CHECK(port::emcv_resolve_pooled_noise(0.9f, 3.0f, 0u) == 0.0f);          // no samples: the value is exact
-    CHECK(port::emcv_resolve_pooled_noise(0.0f, 0.0f, 8u) < 0.0f);           // nobody knows: no noise box
+TEST_CASE("resolve noise box: the pixel's variance is the larger of its own and its neighbourhood's mean, over its samples") {
+    CHECK(std::abs(port::emcv_resolve_pooled_noise(0.1f, 0.9f, 3.0f, 4u) - 0.075f) <= 1e-8f);  // the neighbourhood's mean
+    CHECK(std::abs(port::emcv_resolve_pooled_noise(0.6f, 0.9f, 3.0f, 4u) - 0.15f) <= 1e-8f);   // the pixel's own
+    CHECK(port::emcv_resolve_pooled_noise(0.1f, 0.9f, 3.0f, 0u) == 0.0f);         // no samples: the value is exact
+    CHECK(port::emcv_resolve_pooled_noise(-1.0f, 0.9f, 3.0f, 1u) < 0.0f);         // its own unknown: no noise box
 }

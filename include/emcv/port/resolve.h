@@ -82,14 +82,18 @@ EMCV_FN vec3 emcv_resolve_ycocg_extent(EMCV_IN(vec3) rgb_deviation) {
     return vec3(luma_like, 0.5f * (d.x + d.z), luma_like);
 }
 
-/// The per-sample variance of this frame's SSS estimate at a pixel that took n samples, pooled over its 3x3
-/// neighbourhood: `sum` of the `known` neighbours' per-sample variances (emcv_sss_noise >= 0), divided by
-/// `known` and by n. Neighbouring pixels' kernels cover nearly the same surface, so their per-sample variances
-/// estimate one quantity; the mean of nine is steadier than one pixel's (whose few samples may all miss a bright
-/// region its kernel reaches: an underestimate). Negative (no noise box) when no neighbour knows; 0 for n = 0.
-EMCV_FN float emcv_resolve_pooled_noise(float sum, float known, uint n) {
+/// The variance of this frame's SSS estimate at a pixel that took n samples: the larger of its own per-sample
+/// variance `own` (emcv_sss_noise) and the mean of its 3x3 neighbourhood's (`sum` of the `known` ones >= 0, the
+/// pixel's own among them), over n. Neighbouring kernels cover nearly the same surface, so the mean is steadier
+/// than one pixel's few samples, which may all miss a bright region the kernel reaches; the pixel's own is kept
+/// where it is larger, since its samples saw what its value holds (one sample that hit a bright spot the
+/// neighbours' missed). Negative (no noise box) where the pixel's own is unknown (fewer than two samples): its
+/// neighbours, which did not see what its one sample saw, cannot vouch for it (pooled alone, a single bright
+/// sample's value was taken as this frame's truth and held the history to it: docs/frame.md). 0 for n = 0.
+EMCV_FN float emcv_resolve_pooled_noise(float own, float sum, float known, uint n) {
     if (n == 0u) return 0.0f;
-    return known > 0.0f ? sum / (known * float(n)) : -1.0f;
+    if (own < 0.0f || !(known > 0.0f)) return -1.0f;
+    return max(own, sum / known) / float(n);
 }
 
 /// The clip box [lo, hi] narrowed to this frame's own noise: to current -+ extent (emcv_resolve_ycocg_extent of

@@ -1,0 +1,200 @@
+# SPDX-License-Identifier: MIT
+"""The resolve's noise box: how well one frame's noise estimate predicts the error, and what the box changes
+(docs/frame.md, "The noise box").
+
+The burley pass stores beside its estimate the ratio estimator's per-sample variance from its own samples
+(include/emcv/port/sss.h, emcv_sss_noise), and the resolve narrows its clip box to EMCV_RESOLVE_NOISE_SIGMA
+standard deviations of it around the current value (include/emcv/port/resolve.h, emcv_resolve_narrow_to_noise).
+Two tables, each from variants of this tree's shaders (a copy of shaders/ with a text replacement, read through
+EMCV_SHADER_DIR; the script refuses when an anchor is no longer in the shader):
+
+  calibration  the resolve made to write, instead of its image, the predicted standard deviation of the current
+               luma (the noise box's luma half-width over EMCV_RESOLVE_NOISE_SIGMA, display units), frames 5-39 of
+               still scenes (`static`, the skin close-up before its switch), 96x96; against it, per pixel, the
+               root mean square of the raw frame's luma error against the reference over those frames (noise and
+               the estimator's bias), over the pixels whose prediction is at least 2/3 of an 8-bit step (below
+               that the 8-bit rounding is the error). The ratio's median and 10th-90th percentiles, and the
+               share of (frame, pixel) whose error exceeds 3 predicted standard deviations.
+  cost         the burley pass's and the resolve pass's times (wall clock, llvmpipe: work, not GPU time) as built
+               and without the noise (the pass's estimate of it not stored, so its three sums are dead code, and
+               the resolve neither loads nor applies it): `static` at 256x256, burley-8 and cv at a budget of 8,
+               5 rounds alternating the two, each pass's median over frames 4-29, the median round.
+  effect       resolve_table.py's PSNR columns (whole frame; "before" frames 20 up to the first light change,
+               "after" its 30 frames) without the noise box (the narrowing line removed) and as built, 96x96,
+               the adaptive methods at a budget of 8.
+
+    /usr/bin/python3 scripts/eval/resolve_noise.py [--build build] [--write-doc]
+
+With --write-doc the tables replace the GENERATED blocks "resolve-noise-calibration", "resolve-noise-cost" and
+"resolve-noise-effect" of docs/frame.md.
+"""
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+from matplotlib import image as mpimg
+
+from adaptive_overhead import make_variant
+from resolve_table import mean, number, run_scene
+from run_eval import publish_table
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+RESOLVE = "render/resolve.comp.glsl"
+NARROW = "        if (!jitters() && noise_extent(p, local, extent)) emcv_resolve_narrow_to_noise(current, extent, lo, hi);\n"
+PREDICTION = [
+    (RESOLVE, "    vec3 resolved = current;\n", "    vec3 resolved = current;\n    float predicted = 0.0f;\n"),
+    (RESOLVE, NARROW, "        if (!jitters() && noise_extent(p, local, extent)) predicted = extent.x / float(EMCV_RESOLVE_NOISE_SIGMA);\n"),
+    (RESOLVE, "    imageStore(resolved_out, p, vec4(clamp(shown, 0.0f, 1.0f), 1.0f));",
+     "    imageStore(resolved_out, p, vec4(clamp(vec3(predicted * float(PREDICTION_GAIN)), 0.0f, 1.0f), 1.0f));"),
+    (RESOLVE, "#version 450 core\n", "#version 450 core\n#define PREDICTION_GAIN 20\n"),
+]
+PREDICTION_GAIN = 20.0  # the predicted deviation is stored x20 in the 8-bit image: 1/255 resolves 0.0002
+SCENES = "demo/scenes/"
+CALIBRATION = [  # (scene, methods, extra arguments); frames 5-39, before any light change
+    ("static", "burley-8", []),
+    ("static", "burley-32", []),
+    ("static", "cv", ["--spp-budget", "8"]),
+    (SCENES + "validation/skin-close.json", "burley-8", []),
+    (SCENES + "validation/skin-close.json", "cv", ["--spp-budget", "8"]),
+]
+CALIBRATION_FRAMES = range(5, 40)
+EFFECT_SCENES = ["static", "light-off", SCENES + "variations/burst-3.json", SCENES + "variations/camera-switch.json",
+                 SCENES + "variations/fade.json", "moving", SCENES + "validation/skin-close.json",
+                 SCENES + "validation/skin-orbit.json", "flicker", "club"]
+NO_NOISE = [
+    ("render/sss_burley.comp.glsl", "    float noise = emcv_sss_noise(sum_w, sum_w2, sum_w2l, sum_w2l2, scattered, n);\n",
+     "    float noise = 1.0f;\n"),
+    (RESOLVE, "        if (!jitters()) tile_noise[i] = noise_at(q);\n", ""),
+    (RESOLVE, NARROW, ""),
+]
+COST_ROUNDS = 5
+COST_PASSES = ["sss-burley", "resolve"]
+EFFECT_METHODS = ["diffuse", "burley-8", "separable-17", "spvg", "cv", "cv-notex"]
+
+
+def luma(image):
+    return 0.25 * image[..., 0] + 0.5 * image[..., 1] + 0.25 * image[..., 2]
+
+
+def load(path):
+    return np.asarray(mpimg.imread(path), dtype=np.float64)[..., :3]
+
+
+def calibration_row(build, shader_dir, case, out):
+    scene, method, extra = case
+    path = os.path.join(ROOT, scene) if scene.startswith(SCENES) else scene
+    cmd = [os.path.join(build, "bin", "emcv-demo"), "--scene", path, "--size", "96x96", "--frames",
+           str(CALIBRATION_FRAMES.stop), "--method", method + ",reference", "--resolve", "taa", "--out", out] + extra
+    done = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, EMCV_SHADER_DIR=shader_dir))
+    if done.returncode != 0:
+        sys.exit(f"resolve_noise.py: {' '.join(cmd)} failed:\n{done.stderr}")
+    errors, predicted = [], []
+    for f in CALIBRATION_FRAMES:
+        reference = luma(load(os.path.join(out, "reference", f"frame-{f:04d}.png")))
+        errors.append(luma(load(os.path.join(out, method, f"frame-{f:04d}.png"))) - reference)
+        predicted.append(load(os.path.join(out, method, f"resolved-{f:04d}.png"))[..., 0] / PREDICTION_GAIN)
+    errors, predicted = np.stack(errors), np.stack(predicted)
+    kept = predicted.mean(axis=0) >= (2.0 / 3.0) / 255.0
+    ratio = np.sqrt((errors ** 2).mean(axis=0))[kept] / np.sqrt((predicted ** 2).mean(axis=0))[kept]
+    beyond = np.abs(errors[:, kept]) > 3.0 * predicted[:, kept]
+    name = os.path.basename(scene).replace(".json", "")
+    budget = f" (budget {extra[1]})" if extra else ""
+    return (f"| {name} | {method}{budget} | {int(kept.sum())} | {np.median(ratio):.2f} | "
+            f"{np.percentile(ratio, 10):.2f}-{np.percentile(ratio, 90):.2f} | {100.0 * beyond.mean():.2f}% |")
+
+
+def pass_medians(build, shader_dir, out):
+    """Per (method, pass): the median over frames 4-29 of the pass's time on `static`, 256x256, 30 frames."""
+    cmd = [os.path.join(build, "bin", "emcv-demo"), "--scene", "static", "--size", "256x256", "--frames", "30",
+           "--method", "burley-8,cv", "--spp-budget", "8", "--resolve", "taa", "--timing", "wall", "--no-frames",
+           "--out", out]
+    done = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, EMCV_SHADER_DIR=shader_dir))
+    if done.returncode != 0:
+        sys.exit(f"resolve_noise.py: {' '.join(cmd)} failed:\n{done.stderr}")
+    with open(os.path.join(out, "metrics.json")) as f:
+        rows = json.load(f)["rows"]
+    times = {}
+    for r in rows:
+        if r["frame"] < 4:
+            continue
+        for entry in r["passes"]:
+            times.setdefault((r["method"], entry["name"]), []).append(entry["ms"])
+    return {k: statistics.median(v) for k, v in times.items()}
+
+
+def cost_table(build, dirs, tmp):
+    rounds = {name: [] for name in dirs}
+    for k in range(COST_ROUNDS):
+        for name, shader_dir in (dirs.items() if k % 2 == 0 else reversed(list(dirs.items()))):
+            rounds[name].append(pass_medians(build, shader_dir, os.path.join(tmp, f"cost-{name}-{k}")))
+    lines = ["| method | pass | without the noise (ms) | as built (ms) | as built / without |", "|---|---|---:|---:|---:|"]
+    for method in ("burley-8", "cv"):
+        for name in COST_PASSES:
+            without = statistics.median(r[(method, name)] for r in rounds["without"])
+            built = statistics.median(r[(method, name)] for r in rounds["as built"])
+            lines.append(f"| {method} | {name} | {without:.3f} | {built:.3f} | {built / without:.2f} |")
+    return "\n".join(lines)
+
+
+def effect_rows(build, shader_dirs, scene, tmp):
+    """Per method: raw, without the box, as built, for the frames before the first light change and after it."""
+    runs = {}
+    for name, shader_dir in shader_dirs.items():
+        os.environ["EMCV_SHADER_DIR"] = shader_dir
+        runs[name] = run_scene(build, os.path.join(ROOT, scene) if scene.startswith(SCENES) else scene,
+                               EFFECT_METHODS, "96x96", 8, os.path.join(tmp, name, os.path.basename(scene)))
+    del os.environ["EMCV_SHADER_DIR"]
+    change = runs["as built"][1]
+    rows = []
+    for m in EFFECT_METHODS:
+        cells = []
+        for before in (True, False):
+            raw = None
+            values = []
+            for name in shader_dirs:
+                rs, _ = runs[name]
+                frames = sorted({int(r["frame"]) for r in rs})
+                span = ([f for f in frames if f >= 20 and (change is None or f < change)] if before else
+                        [f for f in frames if change is not None and change <= f < change + 30])
+                own = {int(r["frame"]): r for r in rs if r["method"] == m}
+                raw = mean([number(own[f]["psnr_db"]) for f in span if f in own])
+                values.append(mean([number(own[f]["psnr_resolved_db"]) for f in span if f in own]))
+            cells += ["-" if v is None else f"{v:.2f}" for v in [raw] + values]
+        rows.append(f"| {os.path.basename(scene).replace('.json', '')} | {m} | " + " | ".join(cells) + " |")
+    return rows
+
+
+def main(argv):
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("--build", default=os.path.join(ROOT, "build"))
+    p.add_argument("--write-doc", action="store_true",
+                   help="replace the resolve-noise-* blocks of docs/frame.md")
+    a = p.parse_args(argv)
+    doc = os.path.join(ROOT, "docs", "frame.md")
+    with tempfile.TemporaryDirectory() as tmp:
+        predicting = make_variant(os.path.join(tmp, "prediction"), PREDICTION)
+        lines = ["| scene | method | pixels | measured / predicted deviation, median | 10th-90th percentile | "
+                 "beyond 3 predicted deviations |", "|---|---|---:|---:|---:|---:|"]
+        for k, case in enumerate(CALIBRATION):
+            lines.append(calibration_row(a.build, predicting, case, os.path.join(tmp, f"calibration{k}")))
+        publish_table("\n".join(lines), a.write_doc, doc, "resolve-noise-calibration", "scripts/eval/resolve_noise.py", argv)
+
+        costs = {"without": make_variant(os.path.join(tmp, "no-noise"), NO_NOISE), "as built": os.path.join(ROOT, "shaders")}
+        publish_table(cost_table(a.build, costs, tmp), a.write_doc, doc, "resolve-noise-cost", "scripts/eval/resolve_noise.py", argv)
+
+        dirs = {"without": make_variant(os.path.join(tmp, "without"), [(RESOLVE, NARROW, "")]),
+                "as built": os.path.join(ROOT, "shaders")}
+        lines = ["| scene | method | raw before | resolved before, without the box | as built | raw after | "
+                 "resolved after, without the box | as built |", "|---|---|---:|---:|---:|---:|---:|---:|"]
+        for scene in EFFECT_SCENES:
+            lines += effect_rows(a.build, dirs, scene, tmp)
+        publish_table("\n".join(lines), a.write_doc, doc, "resolve-noise-effect", "scripts/eval/resolve_noise.py", argv)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
