@@ -140,7 +140,10 @@ TEST_CASE("this frame's noise: the ratio estimate's per-sample variance from the
             CHECK(std::abs(double(v[c]) - direct) <= 1e-4 * direct + 1e-6);
             largest = std::max(largest, v[c]);
         }
-        CHECK(emcv_sss_noise(sums.w, sums.w2, sums.w2l, sums.w2l2, r, n) == largest);  // the largest channel
+        // the largest channel, where every channel has two effective samples or more (Kish: (sum w)^2 / sum w^2)
+        bool effective = true;
+        for (int c = 0; c < 3; ++c) effective = effective && sums.w[c] * sums.w[c] >= 2.0f * sums.w2[c];
+        CHECK(emcv_sss_noise(sums.w, sums.w2, sums.w2l, sums.w2l2, r, n) == (effective ? largest : emcv_sss_noise_unknown()));
     }
 }
 
@@ -166,7 +169,7 @@ TEST_CASE("this frame's noise: with equal weights it is the unbiased sample vari
     CHECK(std::abs(mean - sigma2) <= 5.0 * sd);
 }
 
-TEST_CASE("this frame's noise: exact without samples, unknown from one sample or a channel that accepted none") {
+TEST_CASE("this frame's noise: exact without samples, unknown from one sample, a channel that accepted none or one dominant weight") {
     noise_sums none;
     CHECK(emcv_sss_noise(none.w, none.w2, none.w2l, none.w2l2, vec3(0.3f), 0u) == emcv_sss_noise_exact());
     noise_sums one;
@@ -177,6 +180,17 @@ TEST_CASE("this frame's noise: exact without samples, unknown from one sample or
     blue_rejected.add(vec3(1.0f, 2.0f, 0.0f), vec3(0.6f));
     CHECK(emcv_sss_noise(blue_rejected.w, blue_rejected.w2, blue_rejected.w2l, blue_rejected.w2l2, vec3(0.4f), 2u) ==
           emcv_sss_noise_unknown());
+    noise_sums dominated;  // three samples, one weighing 10 times the others: (sum w)^2 / sum w^2 = 144 / 102 < 2
+    dominated.add(vec3(1.0f), vec3(0.1f));
+    dominated.add(vec3(1.0f), vec3(0.1f));
+    dominated.add(vec3(10.0f), vec3(5.0f));
+    CHECK(emcv_sss_noise(dominated.w, dominated.w2, dominated.w2l, dominated.w2l2, dominated.estimate(), 3u) ==
+          emcv_sss_noise_unknown());
+    noise_sums balanced;  // the same values under weights 1, 1, 2: (sum w)^2 / sum w^2 = 16 / 6 >= 2, known
+    balanced.add(vec3(1.0f), vec3(0.1f));
+    balanced.add(vec3(1.0f), vec3(0.1f));
+    balanced.add(vec3(2.0f), vec3(5.0f));
+    CHECK(emcv_sss_noise(balanced.w, balanced.w2, balanced.w2l, balanced.w2l2, balanced.estimate(), 3u) > 0.0f);
     CHECK(emcv_sss_noise_exact() < 0.0f);  // both codes are below every variance, which the resolve pools
     CHECK(emcv_sss_noise_unknown() < 0.0f);
     CHECK(emcv_sss_noise_exact() != emcv_sss_noise_unknown());

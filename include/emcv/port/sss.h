@@ -95,8 +95,8 @@ EMCV_FN vec3 emcv_sss_weight(float r_mm, float r_e_mm, vec3 d, float d_sample) {
 /// the pixel's own irradiance, exactly).
 EMCV_FN float emcv_sss_noise_exact() { return -2.0f; }
 
-/// emcv_sss_noise's code for an estimate whose noise one frame cannot tell: fewer than two samples, or a
-/// channel that accepted none.
+/// emcv_sss_noise's code for an estimate whose noise one frame cannot tell: fewer than two effective samples in
+/// a channel (below).
 EMCV_FN float emcv_sss_noise_unknown() { return -1.0f; }
 
 /// Per channel, the per-sample variance of the ratio estimate R = sum(w L) / sum(w) over n samples, from the
@@ -115,10 +115,16 @@ EMCV_FN vec3 emcv_sss_sample_variance(vec3 sum_w, vec3 sum_w2, vec3 sum_w2l, vec
 /// The noise code a pass stores beside its estimate (one float): the largest channel's per-sample variance
 /// (emcv_sss_sample_variance), emcv_sss_noise_exact() for n = 0, emcv_sss_noise_unknown() when one frame
 /// cannot tell. The largest channel: the resolve applies one deviation to every channel, and a box too wide
-/// keeps noise where one too narrow would drop a good history.
+/// keeps noise where one too narrow would drop a good history. One frame cannot tell where a channel has fewer
+/// than two effective samples, (sum w)^2 / sum w^2 < 2 (Kish's effective sample size; a channel that accepted
+/// none has 0): where one sample's weight dominates, R is that sample's value and every residual the delta
+/// method sees is small, whatever the sample hit. On the renderer's shadowed rims such estimates were a tenth of
+/// the deviation the bright sample put into the pixel (docs/frame.md, "The noise box").
 EMCV_FN float emcv_sss_noise(vec3 sum_w, vec3 sum_w2, vec3 sum_w2l, vec3 sum_w2l2, vec3 estimate, uint n) {
     if (n == 0u) return emcv_sss_noise_exact();
     if (n < 2u || !(sum_w.x > 0.0f && sum_w.y > 0.0f && sum_w.z > 0.0f)) return emcv_sss_noise_unknown();
+    vec3 effective = sum_w * sum_w / sum_w2;  // Kish's effective sample size per channel
+    if (min(effective.x, min(effective.y, effective.z)) < 2.0f) return emcv_sss_noise_unknown();
     vec3 v = emcv_sss_sample_variance(sum_w, sum_w2, sum_w2l, sum_w2l2, estimate, n);
     return max(v.x, max(v.y, v.z));
 }
