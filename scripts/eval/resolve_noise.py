@@ -9,12 +9,13 @@ Two tables, each from variants of this tree's shaders (a copy of shaders/ with a
 EMCV_SHADER_DIR; the script refuses when an anchor is no longer in the shader):
 
   calibration  the resolve made to write, instead of its image, the predicted standard deviation of the current
-               luma (the noise box's luma half-width over EMCV_RESOLVE_NOISE_SIGMA, display units), frames 5-39 of
-               still scenes (`static`, the skin close-up before its switch), 96x96; against it, per pixel, the
-               root mean square of the raw frame's luma error against the reference over those frames (noise and
-               the estimator's bias), over the pixels whose prediction is at least 2/3 of an 8-bit step (below
-               that the 8-bit rounding is the error). The ratio's median and 10th-90th percentiles, and the
-               share of (frame, pixel) whose error exceeds 3 predicted standard deviations.
+               luma (the noise box's luma half-width over EMCV_RESOLVE_NOISE_SIGMA, display units; 0 where the
+               frame had no noise box), frames 5-39 of still scenes (`static`, the skin close-up before its
+               switch), 96x96; against it, per pixel over the frames with a box, the root mean square of the raw
+               frame's luma error against the reference (noise and the estimator's bias) over that of the
+               prediction, for the pixels whose prediction is at least 2/3 of an 8-bit step (below that the 8-bit
+               rounding is the error). The ratio's median and 10th-90th percentiles, and the share of the (frame,
+               pixel) with a box whose error exceeds 3 predicted standard deviations.
   cost         the burley pass's and the resolve pass's times (wall clock, llvmpipe: work, not GPU time) as built
                and without the noise (the pass's estimate of it not stored, so its three sums are dead code, and
                the resolve neither loads nor applies it): `static` at 256x256, burley-8 and cv at a budget of 8,
@@ -99,9 +100,14 @@ def calibration_row(build, shader_dir, case, out):
         errors.append(luma(load(os.path.join(out, method, f"frame-{f:04d}.png"))) - reference)
         predicted.append(load(os.path.join(out, method, f"resolved-{f:04d}.png"))[..., 0] / PREDICTION_GAIN)
     errors, predicted = np.stack(errors), np.stack(predicted)
-    kept = predicted.mean(axis=0) >= (2.0 / 3.0) / 255.0
-    ratio = np.sqrt((errors ** 2).mean(axis=0))[kept] / np.sqrt((predicted ** 2).mean(axis=0))[kept]
-    beyond = np.abs(errors[:, kept]) > 3.0 * predicted[:, kept]
+    # A frame predicts at a pixel where its noise box applied (0 where it did not: fewer than two effective
+    # samples); a pixel is kept where its boxes' mean prediction is at least 2/3 of an 8-bit step.
+    boxed = predicted > 0.0
+    frames = np.maximum(boxed.sum(axis=0), 1)
+    mean_square = lambda a: np.where(boxed, a ** 2, 0.0).sum(axis=0) / frames
+    kept = (boxed.sum(axis=0) > 0) & (np.sqrt(mean_square(predicted)) >= (2.0 / 3.0) / 255.0)
+    ratio = np.sqrt(mean_square(errors))[kept] / np.sqrt(mean_square(predicted))[kept]
+    beyond = (np.abs(errors) > 3.0 * predicted)[:, kept][boxed[:, kept]]
     name = os.path.basename(scene).replace(".json", "")
     budget = f" (budget {extra[1]})" if extra else ""
     return (f"| {name} | {method}{budget} | {int(kept.sum())} | {np.median(ratio):.2f} | "
