@@ -46,10 +46,10 @@ from run_eval import publish_table
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 RESOLVE = "render/resolve.comp.glsl"
-NARROW = "        if (!jitters() && noise_extent(p, local, extent)) emcv_resolve_narrow_to_noise(current, extent, lo, hi);\n"
+NARROW = "        if (!jitters() && noise_extent(p, local, current, extent)) emcv_resolve_narrow_to_noise(current, extent, lo, hi);\n"
 PREDICTION = [
     (RESOLVE, "    vec3 resolved = current;\n", "    vec3 resolved = current;\n    float predicted = 0.0f;\n"),
-    (RESOLVE, NARROW, "        if (!jitters() && noise_extent(p, local, extent)) predicted = extent.x / float(EMCV_RESOLVE_NOISE_SIGMA);\n"),
+    (RESOLVE, NARROW, "        if (!jitters() && noise_extent(p, local, current, extent)) predicted = extent.x / float(EMCV_RESOLVE_NOISE_SIGMA);\n"),
     (RESOLVE, "    imageStore(resolved_out, p, vec4(clamp(shown, 0.0f, 1.0f), 1.0f));",
      "    imageStore(resolved_out, p, vec4(clamp(vec3(predicted * float(PREDICTION_GAIN)), 0.0f, 1.0f), 1.0f));"),
     (RESOLVE, "#version 450 core\n", "#version 450 core\n#define PREDICTION_GAIN 20\n"),

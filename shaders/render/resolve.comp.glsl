@@ -66,7 +66,7 @@ float noise_at(ivec2 q) {
 /// (emcv_resolve_pooled_noise) over p's samples, scaled by the albedo (the composite multiplies the scattered
 /// light by it) and carried through the display encoding at the current value. False where no box applies
 /// (p's own noise unknown).
-bool noise_extent(ivec2 p, ivec2 local, out vec3 extent) {
+bool noise_extent(ivec2 p, ivec2 local, vec3 current, out vec3 extent) {
     extent = vec3(0.0f);
     float own = tile_noise[local.x + local.y * APRON_SIDE];
     float variance = 0.0f;
@@ -84,12 +84,12 @@ bool noise_extent(ivec2 p, ivec2 local, out vec3 extent) {
         variance = emcv_resolve_pooled_noise(own, sum, known, texelFetch(sample_counts, p, 0).x);
         if (variance < 0.0f) return false;
     }
-    vec3 part = resolved_part(p);
+    if (variance == 0.0f) return true;  // exact: the box closes on the current value
     vec3 deviation = float(EMCV_RESOLVE_NOISE_SIGMA) * sqrt(variance) * texelFetch(gbuffer_albedo, p, 0).xyz;
-    int tonemap = int(frame.ambient.w);
-    float exposure = frame.background.w;
-    extent = emcv_resolve_ycocg_extent(emcv_display_encode((part + deviation) * exposure, tonemap) -
-                                       emcv_display_encode(part * exposure, tonemap));
+    // The current value's display encoding is the tile's (current, in YCoCg): one encoding per pixel, not two.
+    extent = emcv_resolve_ycocg_extent(
+        emcv_display_encode((resolved_part(p) + deviation) * frame.background.w, int(frame.ambient.w)) -
+        emcv_ycocg_to_rgb(current));
     return true;
 }
 
@@ -201,7 +201,7 @@ void main() {
         // Without jitter the box is also narrowed to this frame's own noise: under jitter the history also
         // anti-aliases, a difference from this frame that the SSS pass's noise does not measure.
         vec3 extent;
-        if (!jitters() && noise_extent(p, local, extent)) emcv_resolve_narrow_to_noise(current, extent, lo, hi);
+        if (!jitters() && noise_extent(p, local, current, extent)) emcv_resolve_narrow_to_noise(current, extent, lo, hi);
         vec3 spread = emcv_resolve_variance(sum, sum_squares, 9.0f);
         vec3 detailed = emcv_resolve_target(current, filtered, spread, history_variance);
         vec3 target = emcv_resolve_clip(detailed, current, lo, hi);
