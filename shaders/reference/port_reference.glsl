@@ -90,16 +90,24 @@ void main() {
     const float g = irradiance_in.irradiance[index];
     vec3 sum = vec3(0.0f);
     vec3 weights = vec3(0.0f);
+    vec3 weights2 = vec3(0.0f), weights2_values = vec3(0.0f), weights2_squares = vec3(0.0f);  // emcv_sss_noise's sums
     for (int i = 0; i < n && !sub_pixel; ++i) {
         const vec2 u = emcv_sss_sample_uv(uint(i), rotation);
         const float r = emcv_sss_sample_radius(u.x, d_max, (i & 1) == 1);
         const vec2 offset = emcv_sss_offset_pixels(r, u.y, px_per_mm);
         const uint x = uint(clamp(int(pixel.x) + int(round(offset.x)), 0, int(width) - 1));
         const vec3 w = emcv_sss_weight(r, emcv_sss_depth_aware_radius(r, 0.0f), d, d_max);
-        sum += w * irradiance_in.irradiance[pixel.y * width + x];
+        const float value = irradiance_in.irradiance[pixel.y * width + x];
+        sum += w * value;
         weights += w;
+        weights2 += w * w;
+        weights2_values += w * w * value;
+        weights2_squares += w * w * (value * value);
     }
     const vec3 scattered = sub_pixel ? vec3(g) : sum / max(weights, vec3(emcv_float_min_normal()));
+    // This frame's noise of the estimate (sss.h), which the resolve below narrows its box to.
+    const float noise = emcv_sss_noise(weights, weights2, weights2_values, weights2_squares, scattered,
+                                       uint(sub_pixel ? 0 : max(n, 0)));
     const float f = emcv_gamma_luminance(scattered);
 
     // Update: cv's robust push of (f, G) and its noise test, spvg's push of f, and the residual at the previous
@@ -153,6 +161,11 @@ void main() {
     vec3 history = emcv_rgb_to_ycocg(previous.rgb) * (taps.x + taps.y + taps.z + taps.w);
     vec3 lo, hi;
     emcv_resolve_clip_box(shown, shown * shown, 1.0f, shown, lo, hi);
+    // The noise box (resolve.h): this pixel's own variance as its neighbourhood's (one pixel here), its deviation
+    // as the extent of each channel (the renderer carries it through the display encoding first).
+    const float noise_variance = emcv_resolve_pooled_noise(noise, max(noise, 0.0f), 1.0f, uint(max(n, 0)));
+    if (noise_variance >= 0.0f)
+        emcv_resolve_narrow_to_noise(shown, emcv_resolve_ycocg_extent(vec3(sqrt(noise_variance))), lo, hi);
     // The clip's target: the current value filtered over a neighbourhood (here the pixel alone, weight 1/4 of the
     // 3x3 filter's 4/4 at the centre, renormalised) with the detail the history's neighbourhood shows put back
     // (one value each here: no spread, the filtered value), clipped into the box towards the current value.
