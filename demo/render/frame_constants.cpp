@@ -11,7 +11,7 @@
 namespace emcv::demo {
 
 void frame_constants::upload(const gpu_resources& r, const scene& s, const method& m, const render_options& o,
-                             int frame, const view_matrices& v, bool sss_shown, bool sss_passes,
+                             int frame, const view_matrices& v, bool sss_shown, bool sss_passes, bool sss_noise,
                              const std::vector<float>& light_scale) {
     const float width = float(r.width), height = float(r.height);
     frame_.view = v.view;
@@ -31,7 +31,7 @@ void frame_constants::upload(const gpu_resources& r, const scene& s, const metho
     if (o.approximate_inverse_cdf) flags |= EMCV_RENDER_FLAG_APPROXIMATE_CDF;
     if (sss_passes) flags |= EMCV_RENDER_FLAG_SSS_TILES;
     if (v.jittered) flags |= EMCV_RENDER_FLAG_JITTER;
-    if (sss_shown && samples_randomly(m)) flags |= EMCV_RENDER_FLAG_SSS_NOISE;
+    if (sss_noise) flags |= EMCV_RENDER_FLAG_SSS_NOISE;
     frame_.counters = glm::uvec4(static_cast<std::uint32_t>(frame), o.seed, static_cast<std::uint32_t>(s.lights.size()), flags);
     // The burley pass takes the method's fixed count; an adaptive method's own burley program (built with its
     // EMCV_ADAPTIVE_* define, adaptive::history) takes N per pixel from the adaptive-samples pass instead.

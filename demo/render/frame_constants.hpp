@@ -20,9 +20,11 @@ public:
 
     /// Fills and uploads the frame block and the light blocks. `sss_shown`: the composite reads the scattered
     /// diffuse (an SSS pass ran, or the reference shows its held result). `sss_passes`: SSS passes run this
-    /// frame (the lighting pass lists their tiles). `light_scale`: one factor per light.
+    /// frame (the lighting pass lists their tiles). `sss_noise`: the resolve reads the burley pass's noise
+    /// (frame_planner::resolves_sss_noise). `light_scale`: one factor per light.
     void upload(const gpu_resources& r, const scene& s, const method& m, const render_options& o, int frame,
-                const view_matrices& v, bool sss_shown, bool sss_passes, const std::vector<float>& light_scale);
+                const view_matrices& v, bool sss_shown, bool sss_passes, bool sss_noise,
+                const std::vector<float>& light_scale);
     /// The next frame's motion vectors start from the camera of the frame uploaded last.
     void end_frame(const view_matrices& v) {
         prev_view_proj_ = v.view_proj;

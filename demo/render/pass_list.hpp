@@ -80,6 +80,13 @@ public:
     bool scatters() const { return scatters_; }
     /// Whether the last planned frame shows scattered light (its SSS passes run, or the reference's held result).
     bool shows_sss() const { return scatters_ || reused_; }
+    /// Whether the last planned frame's resolve narrows its box to the noise of a Monte Carlo SSS pass
+    /// (resolve.comp.glsl: a resolve without jitter after the burley pass): only then does the burley pass keep
+    /// and store its noise (EMCV_RENDER_FLAG_SSS_NOISE).
+    bool resolves_sss_noise() const {
+        return scatters_ && samples_randomly(m_) && resolve_ == resolve_mode::taa && !jitter_ &&
+               m_.type != method::kind::reference;
+    }
     /// The camera of the last planned frame (the renderer uploads it).
     const view_matrices& view() const { return view_; }
     /// Forget the held result (method switch).

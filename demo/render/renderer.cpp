@@ -163,7 +163,7 @@ struct renderer::impl {
         const std::vector<planned_pass>& plan = planner.plan(frame, light_scale);
         const view_matrices& v = planner.view();
         const bool visible = planner.shows_sss();
-        constants.upload(res, s, m, o, frame, v, visible, planner.scatters(), light_scale);
+        constants.upload(res, s, m, o, frame, v, visible, planner.scatters(), planner.resolves_sss_noise(), light_scale);
         const frame_context context{res, programs, s, m, history ? &*history : nullptr, frame,
                                     div_up(o.width, EMCV_RENDER_TILE_SIZE), div_up(o.height, EMCV_RENDER_TILE_SIZE),
                                     planner.scatters()};

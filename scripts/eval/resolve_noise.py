@@ -68,7 +68,7 @@ EFFECT_SCENES = ["static", "light-off", SCENES + "variations/burst-3.json", SCEN
                  SCENES + "variations/fade.json", "moving", SCENES + "validation/skin-close.json",
                  SCENES + "validation/skin-orbit.json", "flicker", "club"]
 NO_NOISE = [
-    ("render/sss_burley.comp.glsl", "    float noise = emcv_sss_noise(sum_w, sum_w2, sum_w2l, sum_w2l2, scattered, n);\n",
+    ("render/sss_burley.comp.glsl", "    float noise = keeps_noise ? emcv_sss_noise(sum_w, sum_w2, sum_w2l, sum_w2l2, scattered, n) : 1.0f;\n",
      "    float noise = 1.0f;\n"),
     (RESOLVE, "        if (!jitters()) tile_noise[i] = noise_at(q);\n", ""),
     (RESOLVE, NARROW, ""),

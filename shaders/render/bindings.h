@@ -62,7 +62,7 @@
 #define EMCV_RENDER_FLAG_APPROXIMATE_CDF 2u // Burley radii from SPVG's approximation
 #define EMCV_RENDER_FLAG_SSS_TILES 4u       // SSS passes follow: the lighting pass lists the SSS tiles
 #define EMCV_RENDER_FLAG_JITTER 8u          // the camera jitters (--jitter): the resolve's history test is the neighbourhood's
-#define EMCV_RENDER_FLAG_SSS_NOISE 16u      // the burley pass ran (samples_randomly): SSS output alpha = emcv_sss_noise
+#define EMCV_RENDER_FLAG_SSS_NOISE 16u      // frame_planner::resolves_sss_noise: the burley pass stores emcv_sss_noise in its alpha
 
 #define EMCV_RENDER_MAX_SEPARABLE_TAPS 25
 

@@ -5,8 +5,8 @@
 // (the renderer defines its EMCV_ADAPTIVE_* from the method table, adaptive/history_io.h), the pass takes the
 // pixel's own N from the adaptive-samples pass and, after its sampling loop, pushes the result into the
 // pixel's history (emcv_adaptive_update_tile): sampling and history update are one dispatch. For cv the
-// tile's noise test runs between the two (adaptive/history_io.h). Beside the estimate (alpha) it stores this
-// frame's noise of it, emcv_sss_noise, for the temporal resolve.
+// tile's noise test runs between the two (adaptive/history_io.h). Where the temporal resolve reads it
+// (EMCV_RENDER_FLAG_SSS_NOISE), it stores beside the estimate (alpha) this frame's noise of it, emcv_sss_noise.
 #version 450 core
 
 #include "emcv/port/sss.h"
@@ -71,7 +71,9 @@ uint scatter(ivec2 p) {
 
     vec3 sum_wl = vec3(0.0f);
     vec3 sum_w = vec3(0.0f);
-    vec3 sum_w2 = vec3(0.0f), sum_w2l = vec3(0.0f), sum_w2l2 = vec3(0.0f);  // emcv_sss_noise's sums
+    // emcv_sss_noise's sums, kept only where the resolve reads the noise (no resolve, jitter, the reference: not).
+    bool keeps_noise = (frame.counters.w & EMCV_RENDER_FLAG_SSS_NOISE) != 0u;
+    vec3 sum_w2 = vec3(0.0f), sum_w2l = vec3(0.0f), sum_w2l2 = vec3(0.0f);
     for (uint i = 0u; i < n; ++i) {
         vec2 u = emcv_sss_sample_uv(i, rotation);
         float r = emcv_sss_sample_radius(u.x, d_sample, approximate);
@@ -85,17 +87,19 @@ uint scatter(ivec2 p) {
         vec3 l = texelFetch(lit_diffuse, q, 0).xyz;
         sum_w += w;
         sum_wl += w * l;
-        vec3 w2 = w * w;
-        sum_w2 += w2;
-        sum_w2l += w2 * l;
-        sum_w2l2 += w2 * l * l;
+        if (keeps_noise) {
+            vec3 w2 = w * w;
+            sum_w2 += w2;
+            sum_w2l += w2 * l;
+            sum_w2l2 += w2 * l * l;
+        }
     }
     vec3 centre = texelFetch(lit_diffuse, p, 0).xyz;
     // A channel with no accepted sample keeps the unscattered value (the pixel's own irradiance).
     vec3 scattered = mix(centre, sum_wl / max(sum_w, vec3(1e-30f)), greaterThan(sum_w, vec3(0.0f)));
     // This frame's noise beside the estimate (its alpha, which the composite does not read): the resolve narrows
     // its clip box to it (docs/frame.md, "Temporal resolve").
-    float noise = emcv_sss_noise(sum_w, sum_w2, sum_w2l, sum_w2l2, scattered, n);
+    float noise = keeps_noise ? emcv_sss_noise(sum_w, sum_w2, sum_w2l, sum_w2l2, scattered, n) : 1.0f;
     imageStore(out_scattered, p, vec4(scattered, noise));
     imageStore(out_count, p, uvec4(n));
 #if defined(EMCV_BURLEY_ADAPTIVE)
