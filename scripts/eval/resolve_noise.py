@@ -4,7 +4,8 @@
 
 The burley pass stores beside its estimate the ratio estimator's per-sample variance from its own samples
 (include/emcv/port/sss.h, emcv_sss_noise), and the resolve narrows its clip box to EMCV_RESOLVE_NOISE_SIGMA
-standard deviations of it around the current value (include/emcv/port/resolve.h, emcv_resolve_narrow_to_noise).
+standard deviations of it around the current value (include/emcv/port/resolve.h, emcv_resolve_narrow_to_noise)
+and takes up a history beyond that box at a higher weight (emcv_resolve_current_weight).
 Two tables, each from variants of this tree's shaders (a copy of shaders/ with a text replacement, read through
 EMCV_SHADER_DIR; the script refuses when an anchor is no longer in the shader):
 
@@ -21,8 +22,11 @@ EMCV_SHADER_DIR; the script refuses when an anchor is no longer in the shader):
                the resolve neither loads nor applies it): `static` at 256x256, burley-8 and cv at a budget of 8,
                5 rounds alternating the two, each pass's median over frames 4-29, the median round.
   effect       resolve_table.py's PSNR columns (whole frame; "before" frames 20 up to the first light change,
-               "after" its 30 frames) without the noise box (the narrowing line removed) and as built, 96x96,
-               the adaptive methods at a budget of 8.
+               "after" its 30 frames), 96x96, the adaptive methods at a budget of 8, for four resolves: without
+               the noise box (neither its narrowing nor its weight), with the box carried through the display
+               encoding upwards only and the blend's weight everywhere (the resolve up to commit 39ee210), sized
+               both ways with the blend's weight everywhere, and as built (a history beyond the box taken up at
+               emcv_resolve_current_weight's weight).
 
     /usr/bin/python3 scripts/eval/resolve_noise.py [--build build] [--write-doc]
 
@@ -46,10 +50,20 @@ from run_eval import git_commit, replace_block, write_atomically
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 RESOLVE = "render/resolve.comp.glsl"
-NARROW = "        if (!jitters() && noise_extent(p, local, current, extent)) emcv_resolve_narrow_to_noise(current, extent, lo, hi);\n"
+BOX = "        bool noise_box = !jitters() && noise_extent(p, local, current, extent);\n"
+NARROW = "        if (noise_box) emcv_resolve_narrow_to_noise(current, extent, lo, hi);\n"
+NO_BOX = [(RESOLVE, BOX, "        bool noise_box = false;\n")]
+# The current value's weight raised where the history lay beyond the box (emcv_resolve_current_weight) undone.
+BLEND_ONLY = [(RESOLVE, "        float weight = noise_box ? emcv_resolve_current_weight(history, current, extent) : float(EMCV_RESOLVE_BLEND);\n",
+               "        float weight = float(EMCV_RESOLVE_BLEND);\n")]
+# The box carried through the display encoding upwards only (as up to commit 39ee210).
+UPWARDS = [(RESOLVE, "    extent = emcv_resolve_noise_extent(resolved_part(p) * exposure, emcv_ycocg_to_rgb(current), deviation * exposure,\n"
+                     "                                       int(frame.ambient.w));\n",
+            "    extent = emcv_resolve_ycocg_extent(emcv_display_encode((resolved_part(p) + deviation) * exposure,\n"
+            "                                       int(frame.ambient.w)) - emcv_ycocg_to_rgb(current));\n")]
 PREDICTION = [
     (RESOLVE, "    vec3 resolved = current;\n", "    vec3 resolved = current;\n    float predicted = 0.0f;\n"),
-    (RESOLVE, NARROW, "        if (!jitters() && noise_extent(p, local, current, extent)) predicted = extent.x / float(EMCV_RESOLVE_NOISE_SIGMA);\n"),
+    (RESOLVE, NARROW, "        if (noise_box) predicted = extent.x / float(EMCV_RESOLVE_NOISE_SIGMA);\n"),
     (RESOLVE, "    imageStore(resolved_out, p, vec4(clamp(shown, 0.0f, 1.0f), 1.0f));",
      "    imageStore(resolved_out, p, vec4(clamp(vec3(predicted * float(PREDICTION_GAIN)), 0.0f, 1.0f), 1.0f));"),
     (RESOLVE, "#version 450 core\n", "#version 450 core\n#define PREDICTION_GAIN 20\n"),
@@ -71,8 +85,7 @@ NO_NOISE = [
     ("render/sss_burley.comp.glsl", "    float noise = keeps_noise ? emcv_sss_noise(sum_w, sum_w2, sum_w2l, sum_w2l2, scattered, n) : 1.0f;\n",
      "    float noise = 1.0f;\n"),
     (RESOLVE, "        if (!jitters()) tile_noise[i] = noise_at(q);\n", ""),
-    (RESOLVE, NARROW, ""),
-]
+] + NO_BOX
 COST_ROUNDS = 5
 COST_PASSES = ["sss-burley", "resolve"]
 EFFECT_METHODS = ["diffuse", "burley-8", "separable-17", "spvg", "cv", "cv-notex"]
@@ -193,10 +206,15 @@ def main(argv):
         costs = {"without": make_variant(os.path.join(tmp, "no-noise"), NO_NOISE), "as built": os.path.join(ROOT, "shaders")}
         tables.append(("resolve-noise-cost", cost_table(a.build, costs, tmp)))
 
-        dirs = {"without": make_variant(os.path.join(tmp, "without"), [(RESOLVE, NARROW, "")]),
+        dirs = {"without": make_variant(os.path.join(tmp, "without"), NO_BOX),
+                "upwards": make_variant(os.path.join(tmp, "upwards"), UPWARDS + BLEND_ONLY),
+                "blend only": make_variant(os.path.join(tmp, "blend-only"), BLEND_ONLY),
                 "as built": os.path.join(ROOT, "shaders")}
-        lines = ["| scene | method | raw before | resolved before, without the box | as built | raw after | "
-                 "resolved after, without the box | as built |", "|---|---|---:|---:|---:|---:|---:|---:|"]
+        variants = ("without the box", "the box sized upwards, the blend's weight", "sized both ways, the blend's weight",
+                    "as built")
+        lines = ["| scene | method | raw before | " + " | ".join(f"resolved before: {v}" for v in variants) +
+                 " | raw after | " + " | ".join(f"resolved after: {v}" for v in variants) + " |",
+                 "|---|---|" + "---:|" * (2 + 2 * len(variants))]
         for scene in EFFECT_SCENES:
             lines += effect_rows(a.build, dirs, scene, tmp)
         tables.append(("resolve-noise-effect", "\n".join(lines)))

@@ -162,10 +162,12 @@ void main() {
     vec3 lo, hi;
     emcv_resolve_clip_box(shown, shown * shown, 1.0f, shown, lo, hi);
     // The noise box (resolve.h): this pixel's own variance as its neighbourhood's (one pixel here), its deviation
-    // as the extent of each channel (the renderer carries it through the display encoding first).
+    // through the display encoding both ways, as the renderer does.
     const float noise_variance = emcv_resolve_pooled_noise(noise, max(noise, 0.0f), 1.0f, uint(max(n, 0)));
-    if (noise_variance >= 0.0f)
-        emcv_resolve_narrow_to_noise(shown, emcv_resolve_ycocg_extent(vec3(sqrt(noise_variance))), lo, hi);
+    const vec3 noise_extent = emcv_resolve_noise_extent(linear, emcv_ycocg_to_rgb(shown),
+                                                        vec3(float(EMCV_RESOLVE_NOISE_SIGMA) * sqrt(max(noise_variance, 0.0f))),
+                                                        int(frame_index & 1u));
+    if (noise_variance >= 0.0f) emcv_resolve_narrow_to_noise(shown, noise_extent, lo, hi);
     // The clip's target: the current value filtered over a neighbourhood (here the pixel alone, weight 1/4 of the
     // 3x3 filter's 4/4 at the centre, renormalised) with the detail the history's neighbourhood shows put back
     // (one value each here: no spread, the filtered value), clipped into the box towards the current value.
@@ -174,7 +176,9 @@ void main() {
                                               emcv_resolve_variance(history, history * history, 1.0f));
     const vec3 target = emcv_resolve_clip(detailed, shown, lo, hi);
     if (emcv_resolve_same_surface(previous.a, frame.camera.w))
-        history = emcv_resolve_blend(emcv_resolve_clip(history, target, lo, hi), shown, EMCV_RESOLVE_BLEND);
+        history = emcv_resolve_blend(emcv_resolve_clip(history, target, lo, hi), shown,
+                                     noise_variance >= 0.0f ? emcv_resolve_current_weight(history, shown, noise_extent)
+                                                            : EMCV_RESOLVE_BLEND);
     else
         history = shown;
     // The display's inverse (tonemap.h), through which the renderer's resolve adds the specular light back

@@ -64,7 +64,8 @@ float noise_at(ivec2 q) {
 /// The YCoCg half-widths of the noise box at p (tile position `local`): EMCV_RESOLVE_NOISE_SIGMA standard
 /// deviations of this frame's estimate, from p's own per-sample variance and its 3x3 neighbours'
 /// (emcv_resolve_pooled_noise) over p's samples, scaled by the albedo (the composite multiplies the scattered
-/// light by it) and carried through the display encoding at the current value. False where no box applies
+/// light by it) and carried through the display encoding at the current value, upwards and downwards (the larger
+/// of the two per channel). False where no box applies
 /// (p's own noise unknown).
 bool noise_extent(ivec2 p, ivec2 local, vec3 current, out vec3 extent) {
     extent = vec3(0.0f);
@@ -86,10 +87,11 @@ bool noise_extent(ivec2 p, ivec2 local, vec3 current, out vec3 extent) {
     }
     if (variance == 0.0f) return true;  // exact: the box closes on the current value
     vec3 deviation = float(EMCV_RESOLVE_NOISE_SIGMA) * sqrt(variance) * texelFetch(gbuffer_albedo, p, 0).xyz;
-    // The current value's display encoding is the tile's (current, in YCoCg): one encoding per pixel, not two.
-    extent = emcv_resolve_ycocg_extent(
-        emcv_display_encode((resolved_part(p) + deviation) * frame.background.w, int(frame.ambient.w)) -
-        emcv_ycocg_to_rgb(current));
+    // Carried through the display encoding both ways (emcv_resolve_noise_extent); the current value's encoding is
+    // the tile's (current, in YCoCg): one encoding per pixel for it, not two.
+    float exposure = frame.background.w;
+    extent = emcv_resolve_noise_extent(resolved_part(p) * exposure, emcv_ycocg_to_rgb(current), deviation * exposure,
+                                       int(frame.ambient.w));
     return true;
 }
 
@@ -201,11 +203,15 @@ void main() {
         // Without jitter the box is also narrowed to this frame's own noise: under jitter the history also
         // anti-aliases, a difference from this frame that the SSS pass's noise does not measure.
         vec3 extent;
-        if (!jitters() && noise_extent(p, local, current, extent)) emcv_resolve_narrow_to_noise(current, extent, lo, hi);
+        bool noise_box = !jitters() && noise_extent(p, local, current, extent);
+        if (noise_box) emcv_resolve_narrow_to_noise(current, extent, lo, hi);
         vec3 spread = emcv_resolve_variance(sum, sum_squares, 9.0f);
         vec3 detailed = emcv_resolve_target(current, filtered, spread, history_variance);
         vec3 target = emcv_resolve_clip(detailed, current, lo, hi);
-        resolved = emcv_resolve_blend(emcv_resolve_clip(history, target, lo, hi), current, float(EMCV_RESOLVE_BLEND));
+        // A history beyond the noise box is wrong, not noisy: what the clip keeps of it is taken up at the weight
+        // that minimises the error of mixing it with this frame (emcv_resolve_current_weight).
+        float weight = noise_box ? emcv_resolve_current_weight(history, current, extent) : float(EMCV_RESOLVE_BLEND);
+        resolved = emcv_resolve_blend(emcv_resolve_clip(history, target, lo, hi), current, weight);
     }
     imageStore(history_out, p, vec4(resolved, depth));
     vec3 shown = emcv_ycocg_to_rgb(resolved);

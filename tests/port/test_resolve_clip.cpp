@@ -209,3 +209,58 @@ TEST_CASE("resolve noise box: the pixel's variance is the larger of its own and 
     CHECK(port::emcv_resolve_pooled_noise(0.1f, 0.9f, 3.0f, 0u) == 0.0f);         // no samples: the value is exact
     CHECK(port::emcv_resolve_pooled_noise(-1.0f, 0.9f, 3.0f, 1u) < 0.0f);         // its own unknown: no noise box
 }
+
+TEST_CASE("resolve noise box: a history beyond it is taken up at the weight that minimises the blend's error") {
+    // What the clip keeps of a history beyond the noise box lies up to k standard deviations sigma from the current
+    // value (k = EMCV_RESOLVE_NOISE_SIGMA); the current value is unbiased with variance sigma^2. Mixed at weight w
+    // the error's expected square is (1 - w)^2 k^2 sigma^2 + w^2 sigma^2: the function's weight must be where a
+    // search over w finds that least (to the search's step), and a history inside the box keeps the blend's.
+    const float k = float(EMCV_RESOLVE_NOISE_SIGMA);
+    double best_w = 0.0, best = 1e30;
+    for (int i = 0; i <= 10000; ++i) {
+        const double w = i / 10000.0;
+        const double e = (1.0 - w) * (1.0 - w) * double(k) * double(k) + w * w;
+        if (e < best) best = e, best_w = w;
+    }
+    const glm::vec3 current(0.375f, 0.0625f, -0.03125f), extent(0.03125f, 0.0078125f, 0.015625f);  // exact in binary
+    for (int c = 0; c < 3; ++c) {  // beyond in one channel, either side
+        for (float side : {-1.0f, 1.0f}) {
+            glm::vec3 history = current;
+            history[c] += side * 1.5f * extent[c];
+            const float w = port::emcv_resolve_current_weight(history, current, extent);
+            INFO("channel " << c << ", side " << side << ": weight " << w << ", least error at " << best_w);
+            CHECK(std::abs(double(w) - best_w) <= 1e-4);
+        }
+    }
+    // Inside the box (on its edge, or within it in every channel): the blend's weight, a converged history kept
+    // (the values are exact in binary, so the edge is exactly the extent away).
+    CHECK(port::emcv_resolve_current_weight(current + extent, current, extent) == float(EMCV_RESOLVE_BLEND));
+    CHECK(port::emcv_resolve_current_weight(current - 0.5f * extent, current, extent) == float(EMCV_RESOLVE_BLEND));
+    // No noise at all (extent 0): any difference is beyond it.
+    CHECK(port::emcv_resolve_current_weight(current + glm::vec3(1e-3f, 0.0f, 0.0f), current, glm::vec3(0.0f)) > 0.5f);
+}
+
+TEST_CASE("resolve noise box: the extent through the display encoding holds the deviation either way") {
+    // A linear value x and a deviation d per channel: every x + s d (s in {-1, 0, 1} per channel, and halfway)
+    // encoded for display (ACES or Reinhard, then sRGB) lies within the extent of the encoded x in YCoCg. The
+    // encoding is concave over most of its range (sRGB), where a step down is the larger, and convex in ACES's toe,
+    // where a step up is: a box sized one way alone misses the other (seen failing for the upward step alone).
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> log_value(-6.0f, 2.0f), fraction(0.0f, 1.0f);
+    for (int tonemap = 0; tonemap < 2; ++tonemap) {
+        for (int trial = 0; trial < 500; ++trial) {
+            const glm::vec3 x(std::exp(log_value(rng)), std::exp(log_value(rng)), std::exp(log_value(rng)));
+            const glm::vec3 d = x * glm::vec3(fraction(rng), fraction(rng), fraction(rng));
+            const glm::vec3 shown = port::emcv_display_encode(x, tonemap);
+            const glm::vec3 extent = port::emcv_resolve_noise_extent(x, shown, d, tonemap);
+            const glm::vec3 centre = port::emcv_rgb_to_ycocg(shown);
+            for (int signs = 0; signs < 27; ++signs) {
+                const glm::vec3 s(float(signs % 3 - 1), float(signs / 3 % 3 - 1), float(signs / 9 - 1));
+                for (float scale : {0.5f, 1.0f}) {
+                    const glm::vec3 y = port::emcv_rgb_to_ycocg(port::emcv_display_encode(x + scale * s * d, tonemap));
+                    for (int c = 0; c < 3; ++c) CHECK(std::abs(y[c] - centre[c]) <= extent[c] + 1e-6f);
+                }
+            }
+        }
+    }
+}

@@ -177,6 +177,30 @@ TEST_CASE("the resolve removes most of a stochastic method's noise under still l
     CHECK(messenger.error_count() == 0);
 }
 
+TEST_CASE("a history the noise box rejects is taken up, not kept at the box's edge: light-off's switch", "[resolve]") {
+    // At the built-in light-off's switch (frame 30) the key light goes out and nearly every SSS pixel's history
+    // lies beyond its noise box. What the clip keeps of it sits on the box's edge, k = 3 (estimated) standard
+    // deviations sigma from the current value; at the blend's weight 0.9 of that stays and the resolved frame errs
+    // by about 0.9 k sigma where the raw frame errs by sigma, squared 7.3 times as much (8.6 dB) and more, since
+    // the estimate overstates sigma (docs/frame.md). Taken up at k^2 / (k^2 + 1) = 0.9 instead
+    // (emcv_resolve_current_weight), the history adds at most 0.1 k sigma: an expected squared error at most
+    // (1 + 0.1 k)^2 = 1.69 times the raw frame's for an independent sigma, 2.3 dB. So over frames 30-32 the resolved
+    // image must lose at most 2.3 dB against the raw frames; it keeps gaining before the switch (frames 20-29).
+    emcv::gl::context ctx = emcv::test::context_or_skip();
+    emcv::gl::debug_messenger messenger;
+    const scene s = load_scene_argument("light-off");
+    std::vector<renderer> noisy;
+    noisy.emplace_back(s, method{method::kind::burley, 4}, options_with(resolve_mode::taa));
+    const double before = resolve_gains_db(s, noisy, 64, 48, 20, 30)[0];
+    std::vector<renderer> again;
+    again.emplace_back(s, method{method::kind::burley, 4}, options_with(resolve_mode::taa));
+    const double at_switch = resolve_gains_db(s, again, 64, 48, 30, 33)[0];
+    INFO("resolved over raw: frames 20-29 " << before << " dB, frames 30-32 " << at_switch << " dB");
+    CHECK(before >= 6.0);
+    CHECK(at_switch >= -2.3);
+    CHECK(messenger.error_count() == 0);
+}
+
 TEST_CASE("the resolve keeps the detail of frames that are already good: the skin close-up", "[resolve]") {
     // demo/scenes/validation/skin-close.json before its switch: skin's short scattering at life size leaves pores
     // and relief a pixel or two wide, and the adaptive methods' raw frames at a budget of 8 are within about 47 dB

@@ -14,6 +14,7 @@
 
 #include "history.h"
 #include "port.h"
+#include "tonemap.h"
 
 /// Weight of the current frame in the exponential blend. At 0.1 a converged history averages about
 /// (2 - 0.1) / 0.1 = 19 frames of independent noise (its variance is 0.1 / (2 - 0.1) of one frame's, -12.8 dB),
@@ -80,6 +81,19 @@ EMCV_FN vec3 emcv_resolve_ycocg_extent(EMCV_IN(vec3) rgb_deviation) {
     vec3 d = abs(rgb_deviation);
     float luma_like = 0.25f * d.x + 0.5f * d.y + 0.25f * d.z;  // Y's and Cg's weights are the same in magnitude
     return vec3(luma_like, 0.5f * (d.x + d.z), luma_like);
+}
+
+/// The noise box's YCoCg half-widths at a pixel whose exposed linear value is `exposed` (display value `shown`:
+/// emcv_display_encode of it) for an exposed linear deviation `deviation` per channel: the deviation carried
+/// through the display encoding upwards and downwards from the pixel's value, the larger of the two per channel,
+/// then bounded in YCoCg for every sign pattern (emcv_resolve_ycocg_extent). The encoding is not linear: sRGB is
+/// concave, so a deviation downwards is the larger in display values there, and ACES's toe is convex, where the
+/// upward one is; a box sized one way alone is too narrow the other, and takes for wrong a history that this
+/// frame's noise explains (docs/frame.md, "The noise box").
+EMCV_FN vec3 emcv_resolve_noise_extent(EMCV_IN(vec3) exposed, EMCV_IN(vec3) shown, EMCV_IN(vec3) deviation, int tonemap) {
+    vec3 up = emcv_display_encode(exposed + deviation, tonemap) - shown;
+    vec3 down = shown - emcv_display_encode(exposed - deviation, tonemap);
+    return emcv_resolve_ycocg_extent(max(abs(up), abs(down)));
 }
 
 /// The variance of this frame's SSS estimate at a pixel that took n samples: the larger of its own per-sample
@@ -169,6 +183,23 @@ EMCV_FN float emcv_resolve_filter_weight(int dx, int dy) {
 EMCV_FN vec4 emcv_resolve_catmull_rom(float t) {
     return vec4(t * (-0.5f + t * (1.0f - 0.5f * t)), 1.0f + t * t * (-2.5f + 1.5f * t), t * (0.5f + t * (2.0f - 1.5f * t)),
                 t * t * (-0.5f + 0.5f * t));
+}
+
+/// The current value's weight in the blend: EMCV_RESOLVE_BLEND, or k^2 / (k^2 + 1) (k = EMCV_RESOLVE_NOISE_SIGMA,
+/// 0.9 at k = 3) where the history lay beyond the noise box `noise_extent` around the current value
+/// (emcv_resolve_narrow_to_noise) in any channel, whichever is larger. Such a history differs from this frame by
+/// more than k standard deviations of its noise: it is wrong (a change of the lighting, a resampled edge under a
+/// moving camera, aliased detail), not noisy. What the clip keeps of it lies on the box's edge, up to k standard
+/// deviations sigma from the current value, an error the blend would hand on to the next frames at its full
+/// weight. Blending that (error k sigma) with the current value (unbiased, variance sigma^2) at weight w leaves
+/// an expected squared error of (1 - w)^2 k^2 sigma^2 + w^2 sigma^2, least at w = k^2 / (k^2 + 1). A history
+/// inside the box keeps the blend's weight: there the difference is what this frame's noise explains. No
+/// constant besides the box's own k. Only where a noise box applies (the caller's test).
+EMCV_FN float emcv_resolve_current_weight(EMCV_IN(vec3) history, EMCV_IN(vec3) current, EMCV_IN(vec3) noise_extent) {
+    bool beyond = false;
+    for (int c = 0; c < 3; ++c) beyond = beyond || abs(history[c] - current[c]) > noise_extent[c];
+    float k2 = float(EMCV_RESOLVE_NOISE_SIGMA) * float(EMCV_RESOLVE_NOISE_SIGMA);
+    return beyond ? max(float(EMCV_RESOLVE_BLEND), k2 / (k2 + 1.0f)) : float(EMCV_RESOLVE_BLEND);
 }
 
 /// One resolve step: the clipped history blended with the current value, current weight `weight`.
