@@ -3,7 +3,8 @@
 /// emcv/port/resolve.h — the per-pixel maths of a temporal resolve (TAA without jitter) after the SSS, as
 /// engines resolve a stochastic SSS before display: the history, reprojected with the motion vectors, is clipped
 /// to the current frame's 3x3 neighbourhood in YCoCg (variance clipping) and blended exponentially with the
-/// current pixel. The demo's `resolve` pass (shaders/render/resolve.comp.glsl) runs it; docs/frame.md,
+/// current pixel (at a higher weight where the history lay beyond this frame's noise box). The demo's `resolve`
+/// pass (shaders/render/resolve.comp.glsl) runs it; docs/frame.md,
 /// "Temporal resolve", states the choices and their sources.
 //
 // TUNABLES   EMCV_RESOLVE_BLEND ........ weight of the current frame in the blend, (0, 1]; default 0.1
