@@ -5,7 +5,8 @@
 The burley pass stores beside its estimate the ratio estimator's per-sample variance from its own samples
 (include/emcv/port/sss.h, emcv_sss_noise), and the resolve narrows its clip box to EMCV_RESOLVE_NOISE_SIGMA
 standard deviations of it around the current value (include/emcv/port/resolve.h, emcv_resolve_narrow_to_noise)
-and takes up a history beyond that box at a higher weight (emcv_resolve_current_weight).
+and takes up a history beyond that box, or one whose neighbourhood has shifted off this frame's, at a higher
+weight (emcv_resolve_current_weight, emcv_resolve_shift_weight).
 Two tables, each from variants of this tree's shaders (a copy of shaders/ with a text replacement, read through
 EMCV_SHADER_DIR; the script refuses when an anchor is no longer in the shader):
 
@@ -25,8 +26,9 @@ EMCV_SHADER_DIR; the script refuses when an anchor is no longer in the shader):
                "after" its 30 frames), 96x96, the adaptive methods at a budget of 8, for four resolves: without
                the noise box (neither its narrowing nor its weight), with the box carried through the display
                encoding upwards only and the blend's weight everywhere (the resolve up to commit 39ee210), sized
-               both ways with the blend's weight everywhere, and as built (a history beyond the box taken up at
-               emcv_resolve_current_weight's weight).
+               both ways with a history beyond it taken up at emcv_resolve_current_weight's weight (the resolve
+               of commit 3679e5a), and as built (also a neighbourhood shifted off this frame taken up at
+               emcv_resolve_shift_weight's).
 
     /usr/bin/python3 scripts/eval/resolve_noise.py [--build build] [--write-doc]
 
@@ -56,6 +58,9 @@ NO_BOX = [(RESOLVE, BOX, "        bool noise_box = false;\n")]
 # The current value's weight raised where the history lay beyond the box (emcv_resolve_current_weight) undone.
 BLEND_ONLY = [(RESOLVE, "        float weight = noise_box ? emcv_resolve_current_weight(history, current, extent) : float(EMCV_RESOLVE_BLEND);\n",
                "        float weight = float(EMCV_RESOLVE_BLEND);\n")]
+# The current value's weight where the history's neighbourhood moved off this frame's (emcv_resolve_shift_weight) undone.
+NO_SHIFT = [(RESOLVE, "        if (noise_box && history_mean_known)\n"
+                      "            weight = max(weight, emcv_resolve_shift_weight(sum / 9.0f - history_mean, extent, 9.0f));\n", "")]
 # The box carried through the display encoding upwards only (as up to commit 39ee210).
 UPWARDS = [(RESOLVE, "    extent = emcv_resolve_noise_extent(resolved_part(p) * exposure, emcv_ycocg_to_rgb(current), deviation * exposure,\n"
                      "                                       int(frame.ambient.w));\n",
@@ -207,11 +212,11 @@ def main(argv):
         tables.append(("resolve-noise-cost", cost_table(a.build, costs, tmp)))
 
         dirs = {"without": make_variant(os.path.join(tmp, "without"), NO_BOX),
-                "upwards": make_variant(os.path.join(tmp, "upwards"), UPWARDS + BLEND_ONLY),
-                "blend only": make_variant(os.path.join(tmp, "blend-only"), BLEND_ONLY),
+                "upwards": make_variant(os.path.join(tmp, "upwards"), UPWARDS + BLEND_ONLY + NO_SHIFT),
+                "no shift": make_variant(os.path.join(tmp, "no-shift"), NO_SHIFT),
                 "as built": os.path.join(ROOT, "shaders")}
-        variants = ("without the box", "the box sized upwards, the blend's weight", "sized both ways, the blend's weight",
-                    "as built")
+        variants = ("without the box", "the box sized upwards, the blend's weight", "sized both ways, its weight beyond it",
+                    "as built: and the shift's weight")
         lines = ["| scene | method | raw before | " + " | ".join(f"resolved before: {v}" for v in variants) +
                  " | raw after | " + " | ".join(f"resolved after: {v}" for v in variants) + " |",
                  "|---|---|" + "---:|" * (2 + 2 * len(variants))]

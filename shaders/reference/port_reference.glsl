@@ -177,7 +177,8 @@ void main() {
     const vec3 target = emcv_resolve_clip(detailed, shown, lo, hi);
     if (emcv_resolve_same_surface(previous.a, frame.camera.w))
         history = emcv_resolve_blend(emcv_resolve_clip(history, target, lo, hi), shown,
-                                     noise_variance >= 0.0f ? emcv_resolve_current_weight(history, shown, noise_extent)
+                                     noise_variance >= 0.0f ? max(emcv_resolve_current_weight(history, shown, noise_extent),
+                                                                  emcv_resolve_shift_weight(shown - history, noise_extent, 1.0f))
                                                             : EMCV_RESOLVE_BLEND);
     else
         history = shown;

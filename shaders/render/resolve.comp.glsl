@@ -129,10 +129,14 @@ bool history_of_pixel(float history_depth, float expected_depth, ivec2 local) {
 /// Last frame's resolved value (YCoCg) at this surface's previous position, or false where none shows it; and
 /// the variance of the history's own 3x3 neighbourhood there (the texels around the one the position falls
 /// nearest, among the 4x4 the resampling reads, each where it shows this surface): the detail the clip's target
-/// keeps (emcv_resolve_target).
-bool reprojected_history(ivec2 p, float depth, ivec2 local, out vec3 history, out vec3 history_variance) {
+/// keeps (emcv_resolve_target); and that neighbourhood's mean, where all 9 texels show this surface (else
+/// `history_mean_known` is false).
+bool reprojected_history(ivec2 p, float depth, ivec2 local, out vec3 history, out vec3 history_variance,
+                         out vec3 history_mean, out bool history_mean_known) {
     history = vec3(0.0f);
     history_variance = vec3(0.0f);
+    history_mean = vec3(0.0f);
+    history_mean_known = false;
     float expected_depth = emcv_render_previous_depth(p, depth);
     // The previous position of p's centre, in texel-centre coordinates (between four texel centres).
     vec2 previous = emcv_render_previous_position(p) - 0.5f;
@@ -166,6 +170,8 @@ bool reprojected_history(ivec2 p, float depth, ivec2 local, out vec3 history, ou
     if (!(weight_sum > 0.5f)) return false;
     history /= weight_sum;
     if (near_count > 0.0f) history_variance = emcv_resolve_variance(near_sum, near_sum_squares, near_count);
+    history_mean_known = near_count == 9.0f;
+    if (history_mean_known) history_mean = near_sum / 9.0f;
     return true;
 }
 
@@ -185,10 +191,12 @@ void main() {
     vec3 current = tile_ycocg[local.x + local.y * APRON_SIDE];
     float depth = emcv_render_depth(p);
     vec3 resolved = current;
-    vec3 history, history_variance;
+    vec3 history, history_variance, history_mean;
+    bool history_mean_known;
     // The background is blended only under jitter (its silhouette pixels mix with the object's); without
     // jitter it does not change and is shown as it is.
-    if ((depth > 0.0f || jitters()) && reprojected_history(p, depth, local, history, history_variance)) {
+    if ((depth > 0.0f || jitters()) &&
+        reprojected_history(p, depth, local, history, history_variance, history_mean, history_mean_known)) {
         vec3 sum = vec3(0.0f), sum_squares = vec3(0.0f), filtered = vec3(0.0f);
         for (int dy = -1; dy <= 1; ++dy) {
             for (int dx = -1; dx <= 1; ++dx) {
@@ -209,8 +217,12 @@ void main() {
         vec3 detailed = emcv_resolve_target(current, filtered, spread, history_variance);
         vec3 target = emcv_resolve_clip(detailed, current, lo, hi);
         // A history beyond the noise box is wrong, not noisy: what the clip keeps of it is taken up at the weight
-        // that minimises the error of mixing it with this frame (emcv_resolve_current_weight).
+        // that minimises the error of mixing it with this frame (emcv_resolve_current_weight); so is a history
+        // whose neighbourhood has moved off this frame's by more than the noise of a 9-value mean
+        // (emcv_resolve_shift_weight: a slow fade, a resampled history).
         float weight = noise_box ? emcv_resolve_current_weight(history, current, extent) : float(EMCV_RESOLVE_BLEND);
+        if (noise_box && history_mean_known)
+            weight = max(weight, emcv_resolve_shift_weight(sum / 9.0f - history_mean, extent, 9.0f));
         resolved = emcv_resolve_blend(emcv_resolve_clip(history, target, lo, hi), current, weight);
     }
     imageStore(history_out, p, vec4(resolved, depth));

@@ -264,3 +264,65 @@ TEST_CASE("resolve noise box: the extent through the display encoding holds the 
         }
     }
 }
+
+TEST_CASE("resolve shift: a neighbourhood moved off this frame beyond the noise of its mean is taken up at the best weight") {
+    // The mean of n current values less the history's mean, in units of the mean's noise sigma / sqrt(n): z. Over
+    // k (EMCV_RESOLVE_NOISE_SIGMA) the shift b is estimated by b^2 = (z^2 - 1) sigma^2 / n, and the weight must be
+    // where a search over w finds (1 - w)^2 b^2 + w^2 sigma^2 least; at or under k it is 0 (this frame's noise).
+    const float k = float(EMCV_RESOLVE_NOISE_SIGMA), sigma = 0.01f;
+    const glm::vec3 extent(k * sigma);  // the noise box: k sigma per channel
+    for (float n : {1.0f, 4.0f, 9.0f}) {
+        for (float z : {1.5f * k, 2.0f * k, 5.0f * k}) {
+            const float mean_noise = sigma / std::sqrt(n);
+            for (int c = 0; c < 3; ++c) {
+                glm::vec3 difference(0.3f * mean_noise);  // the other channels well inside the noise
+                difference[c] = -z * mean_noise;
+                const float w = port::emcv_resolve_shift_weight(difference, extent, n);
+                const double b2 = (double(z) * z - 1.0) / n;  // in units of sigma^2
+                double best_w = 0.0, best = 1e30;
+                for (int i = 0; i <= 10000; ++i) {
+                    const double v = i / 10000.0, e = (1.0 - v) * (1.0 - v) * b2 + v * v;
+                    if (e < best) best = e, best_w = v;
+                }
+                INFO("n " << n << ", z " << z << ", channel " << c << ": weight " << w << ", least error at " << best_w);
+                CHECK(std::abs(double(w) - best_w) <= 2e-4);
+            }
+        }
+        // At k mean deviations or under: no shift this frame's noise could not make.
+        CHECK(port::emcv_resolve_shift_weight(glm::vec3(0.99f * k * sigma / std::sqrt(n)), extent, n) == 0.0f);
+        CHECK(port::emcv_resolve_shift_weight(glm::vec3(0.0f), extent, n) == 0.0f);
+    }
+    // The same difference is a larger z for a mean of more values: more weight at n = 9 than at n = 1.
+    const glm::vec3 d(2.0f * k * sigma);
+    CHECK(port::emcv_resolve_shift_weight(d, extent, 9.0f) > port::emcv_resolve_shift_weight(d, extent, 1.0f));
+}
+
+TEST_CASE("resolve shift: z^2 - 1 estimates the shift, z^2 of a mean of n noisy values averaging 1 + n b^2 / sigma^2") {
+    // The model the weight inverts, on draws: n values of noise sigma shifted by b; their mean's difference, in the
+    // units emcv_resolve_shift_weight uses, squared, averages 1 + n b^2 / sigma^2. Over M = 20000 draws z^2 (a
+    // noncentral chi-square with 1 degree of freedom, variance 2 + 4 n b^2 / sigma^2) has a mean within 5 of its
+    // standard errors. The weight is read back to z^2: w = (z^2 - 1) / (z^2 - 1 + n) gives z^2 = 1 + n w / (1 - w),
+    // so the draws use shifts large enough that z stays over k on nearly every draw (b = 2 sigma, n = 9: z about 6).
+    std::mt19937 rng(13);
+    std::normal_distribution<float> unit(0.0f, 1.0f);
+    const float k = float(EMCV_RESOLVE_NOISE_SIGMA), sigma = 0.02f, b = 2.0f * sigma, n = 9.0f;
+    const glm::vec3 extent(k * sigma);
+    const int draws = 20000;
+    double sum = 0.0;
+    int over = 0;
+    for (int i = 0; i < draws; ++i) {
+        float mean = 0.0f;
+        for (int j = 0; j < 9; ++j) mean += b + sigma * unit(rng);
+        mean /= n;
+        const float w = port::emcv_resolve_shift_weight(glm::vec3(mean, 0.0f, 0.0f), extent, n);
+        if (w > 0.0f) {
+            sum += 1.0 + double(n) * w / (1.0 - w);
+            ++over;
+        }
+    }
+    REQUIRE(over > draws * 99 / 100);
+    const double expected = 1.0 + n * double(b) * b / (double(sigma) * sigma);
+    const double standard_error = std::sqrt((2.0 + 4.0 * n * double(b) * b / (double(sigma) * sigma)) / over);
+    INFO("mean z^2 " << sum / over << ", expected " << expected << ", standard error " << standard_error);
+    CHECK(std::abs(sum / over - expected) <= 5.0 * standard_error + 0.05);  // + the draws under k left out
+}

@@ -203,6 +203,31 @@ EMCV_FN float emcv_resolve_current_weight(EMCV_IN(vec3) history, EMCV_IN(vec3) c
     return beyond ? max(float(EMCV_RESOLVE_BLEND), k2 / (k2 + 1.0f)) : float(EMCV_RESOLVE_BLEND);
 }
 
+/// The current value's weight where the history's neighbourhood as a whole has moved off this frame's: 0, or
+/// (z^2 - 1) / (z^2 - 1 + n) where z > k (k = EMCV_RESOLVE_NOISE_SIGMA). `mean_difference` is the mean of the
+/// current 3x3 neighbourhood less the mean of the history's 3x3 texels around the reprojected position (n = 9
+/// values each, all on this surface), `noise_extent` the pixel's noise box (k standard deviations sigma per
+/// channel, emcv_resolve_noise_extent). A change of the lighting that each frame keeps inside the noise (a slow
+/// fade: the history lags it by a little more every frame), or a history that resampling has moved off this
+/// frame's values, shifts the neighbourhood together, while this frame's noise, independent from pixel to pixel,
+/// averages down to sigma / sqrt(n) in the mean. z is the largest channel's difference in those units. The test
+/// is the noise box's own, at the mean's noise: a shift of more than k of its standard deviations is not this
+/// frame's noise (a normal noise exceeds it on 0.3% of frames per channel; Chebyshev: at most 1 / k^2). Then
+/// z^2 - 1 is the method-of-moments estimate of the squared shift b^2 in units of sigma^2 / n (E[z^2] = 1 + n b^2 /
+/// sigma^2), and mixing a history off by b with the current value (variance sigma^2) at weight w leaves
+/// (1 - w)^2 b^2 + w^2 sigma^2, least at b^2 / (b^2 + sigma^2): the weight returned. No constant but n and k.
+EMCV_FN float emcv_resolve_shift_weight(EMCV_IN(vec3) mean_difference, EMCV_IN(vec3) noise_extent, float n) {
+    float z2 = 0.0f;
+    for (int c = 0; c < 3; ++c) {
+        if (noise_extent[c] > 0.0f) {
+            float z = mean_difference[c] * float(EMCV_RESOLVE_NOISE_SIGMA) * sqrt(n) / noise_extent[c];
+            z2 = max(z2, z * z);
+        }
+    }
+    float k2 = float(EMCV_RESOLVE_NOISE_SIGMA) * float(EMCV_RESOLVE_NOISE_SIGMA);
+    return z2 > k2 ? (z2 - 1.0f) / (z2 - 1.0f + n) : 0.0f;
+}
+
 /// One resolve step: the clipped history blended with the current value, current weight `weight`.
 EMCV_FN vec3 emcv_resolve_blend(EMCV_IN(vec3) clipped_history, EMCV_IN(vec3) current, float weight) {
     return mix(clipped_history, current, weight);
