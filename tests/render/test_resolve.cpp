@@ -123,30 +123,50 @@ TEST_CASE("a noise-free image resolves to itself, within one 8-bit step, still o
 
 namespace {
 
-/// The resolve's gain in dB over the raw frames, per renderer: the squared error against the reference over the
-/// SSS pixels of frames `from` to `frames` - 1, raw over resolved.
-std::vector<double> resolve_gains_db(const scene& s, std::vector<renderer>& noisy, int width, int height, int from,
-                                     int frames) {
+/// Per renderer and frame, the squared error against the reference over the SSS pixels: raw and resolved.
+struct frame_errors {
+    std::vector<std::vector<double>> raw, resolved;
+};
+
+frame_errors resolve_errors(const scene& s, std::vector<renderer>& noisy, int width, int height, int frames) {
     render_options reference_options = options_with(resolve_mode::none);
     reference_options.width = width;
     reference_options.height = height;
     renderer reference(s, *parse_method("reference"), reference_options);
-    std::vector<double> raw(noisy.size(), 0.0), resolved(noisy.size(), 0.0);
+    frame_errors e{std::vector<std::vector<double>>(noisy.size()), std::vector<std::vector<double>>(noisy.size())};
     for (int frame = 0; frame < frames; ++frame) {
         reference.render(frame);
         for (renderer& r : noisy) r.render(frame);
-        if (frame < from) continue;
         const emcv::gl::float_image truth = reference.display(), mask = reference.sss_mask();
         for (std::size_t i = 0; i < noisy.size(); ++i) {
-            raw[i] += squared_error(noisy[i].display(), truth, mask);
-            resolved[i] += squared_error(noisy[i].shown(), truth, mask);
+            e.raw[i].push_back(squared_error(noisy[i].display(), truth, mask));
+            e.resolved[i].push_back(squared_error(noisy[i].shown(), truth, mask));
         }
     }
+    return e;
+}
+
+/// The resolve's gain in dB over the raw frames of renderer i over frames `from` to `to` - 1: raw over resolved.
+double gain_db(const frame_errors& e, std::size_t i, int from, int to) {
+    double raw = 0.0, resolved = 0.0;
+    for (int f = from; f < to; ++f) {
+        raw += e.raw[i][std::size_t(f)];
+        resolved += e.resolved[i][std::size_t(f)];
+    }
+    INFO("raw " << raw << ", resolved " << resolved);
+    REQUIRE(resolved > 0.0);
+    return 10.0 * std::log10(raw / resolved);
+}
+
+/// The resolve's gain in dB over the raw frames, per renderer: the squared error against the reference over the
+/// SSS pixels of frames `from` to `frames` - 1, raw over resolved.
+std::vector<double> resolve_gains_db(const scene& s, std::vector<renderer>& noisy, int width, int height, int from,
+                                     int frames) {
+    const frame_errors e = resolve_errors(s, noisy, width, height, frames);
     std::vector<double> gains;
     for (std::size_t i = 0; i < noisy.size(); ++i) {
-        REQUIRE(resolved[i] > 0.0);
-        gains.push_back(10.0 * std::log10(raw[i] / resolved[i]));
-        INFO(noisy[i].current_method().name() << ": raw " << raw[i] << ", resolved " << resolved[i]);
+        INFO(noisy[i].current_method().name());
+        gains.push_back(gain_db(e, i, from, frames));
     }
     return gains;
 }
@@ -191,10 +211,8 @@ TEST_CASE("a history the noise box rejects is taken up, not kept at the box's ed
     const scene s = load_scene_argument("light-off");
     std::vector<renderer> noisy;
     noisy.emplace_back(s, method{method::kind::burley, 4}, options_with(resolve_mode::taa));
-    const double before = resolve_gains_db(s, noisy, 64, 48, 20, 30)[0];
-    std::vector<renderer> again;
-    again.emplace_back(s, method{method::kind::burley, 4}, options_with(resolve_mode::taa));
-    const double at_switch = resolve_gains_db(s, again, 64, 48, 30, 33)[0];
+    const frame_errors e = resolve_errors(s, noisy, 64, 48, 33);
+    const double before = gain_db(e, 0, 20, 30), at_switch = gain_db(e, 0, 30, 33);
     INFO("resolved over raw: frames 20-29 " << before << " dB, frames 30-32 " << at_switch << " dB");
     CHECK(before >= 6.0);
     CHECK(at_switch >= -2.3);

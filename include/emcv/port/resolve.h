@@ -3,7 +3,8 @@
 /// emcv/port/resolve.h — the per-pixel maths of a temporal resolve (TAA without jitter) after the SSS, as
 /// engines resolve a stochastic SSS before display: the history, reprojected with the motion vectors, is clipped
 /// to the current frame's 3x3 neighbourhood in YCoCg (variance clipping) and blended exponentially with the
-/// current pixel (at a higher weight where the history lay beyond this frame's noise box). The demo's `resolve`
+/// current pixel (at a higher weight where the history, or its neighbourhood's mean, lay beyond this frame's
+/// noise). The demo's `resolve`
 /// pass (shaders/render/resolve.comp.glsl) runs it; docs/frame.md,
 /// "Temporal resolve", states the choices and their sources.
 //
@@ -186,21 +187,28 @@ EMCV_FN vec4 emcv_resolve_catmull_rom(float t) {
                 t * t * (-0.5f + 0.5f * t));
 }
 
+/// The current value's weight that minimises the error of mixing it (unbiased, variance sigma^2) with a history
+/// off by b: at weight w the expected squared error is (1 - w)^2 b^2 + w^2 sigma^2, least at b^2 / (b^2 + sigma^2).
+/// `bias_squared` is b^2 in units of sigma^2. emcv_resolve_current_weight and emcv_resolve_shift_weight estimate b
+/// two ways.
+EMCV_FN float emcv_resolve_least_error_weight(float bias_squared) {
+    return bias_squared / (bias_squared + 1.0f);
+}
+
 /// The current value's weight in the blend: EMCV_RESOLVE_BLEND, or k^2 / (k^2 + 1) (k = EMCV_RESOLVE_NOISE_SIGMA,
 /// 0.9 at k = 3) where the history lay beyond the noise box `noise_extent` around the current value
 /// (emcv_resolve_narrow_to_noise) in any channel, whichever is larger. Such a history differs from this frame by
 /// more than k standard deviations of its noise: it is wrong (a change of the lighting, a resampled edge under a
 /// moving camera, aliased detail), not noisy. What the clip keeps of it lies on the box's edge, up to k standard
 /// deviations sigma from the current value, an error the blend would hand on to the next frames at its full
-/// weight. Blending that (error k sigma) with the current value (unbiased, variance sigma^2) at weight w leaves
-/// an expected squared error of (1 - w)^2 k^2 sigma^2 + w^2 sigma^2, least at w = k^2 / (k^2 + 1). A history
+/// weight: b = k sigma in emcv_resolve_least_error_weight, w = k^2 / (k^2 + 1). A history
 /// inside the box keeps the blend's weight: there the difference is what this frame's noise explains. No
 /// constant besides the box's own k. Only where a noise box applies (the caller's test).
 EMCV_FN float emcv_resolve_current_weight(EMCV_IN(vec3) history, EMCV_IN(vec3) current, EMCV_IN(vec3) noise_extent) {
     bool beyond = false;
     for (int c = 0; c < 3; ++c) beyond = beyond || abs(history[c] - current[c]) > noise_extent[c];
     float k2 = float(EMCV_RESOLVE_NOISE_SIGMA) * float(EMCV_RESOLVE_NOISE_SIGMA);
-    return beyond ? max(float(EMCV_RESOLVE_BLEND), k2 / (k2 + 1.0f)) : float(EMCV_RESOLVE_BLEND);
+    return beyond ? max(float(EMCV_RESOLVE_BLEND), emcv_resolve_least_error_weight(k2)) : float(EMCV_RESOLVE_BLEND);
 }
 
 /// The current value's weight where the history's neighbourhood as a whole has moved off this frame's: 0, or
@@ -214,8 +222,8 @@ EMCV_FN float emcv_resolve_current_weight(EMCV_IN(vec3) history, EMCV_IN(vec3) c
 /// is the noise box's own, at the mean's noise: a shift of more than k of its standard deviations is not this
 /// frame's noise (a normal noise exceeds it on 0.3% of frames per channel; Chebyshev: at most 1 / k^2). Then
 /// z^2 - 1 is the method-of-moments estimate of the squared shift b^2 in units of sigma^2 / n (E[z^2] = 1 + n b^2 /
-/// sigma^2), and mixing a history off by b with the current value (variance sigma^2) at weight w leaves
-/// (1 - w)^2 b^2 + w^2 sigma^2, least at b^2 / (b^2 + sigma^2): the weight returned. No constant but n and k.
+/// sigma^2), and the weight returned is emcv_resolve_least_error_weight's for it, (z^2 - 1) / (z^2 - 1 + n). No
+/// constant but n and k.
 EMCV_FN float emcv_resolve_shift_weight(EMCV_IN(vec3) mean_difference, EMCV_IN(vec3) noise_extent, float n) {
     float z2 = 0.0f;
     for (int c = 0; c < 3; ++c) {
@@ -225,7 +233,7 @@ EMCV_FN float emcv_resolve_shift_weight(EMCV_IN(vec3) mean_difference, EMCV_IN(v
         }
     }
     float k2 = float(EMCV_RESOLVE_NOISE_SIGMA) * float(EMCV_RESOLVE_NOISE_SIGMA);
-    return z2 > k2 ? (z2 - 1.0f) / (z2 - 1.0f + n) : 0.0f;
+    return z2 > k2 ? emcv_resolve_least_error_weight((z2 - 1.0f) / n) : 0.0f;
 }
 
 /// One resolve step: the clipped history blended with the current value, current weight `weight`.
