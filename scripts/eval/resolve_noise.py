@@ -27,8 +27,9 @@ EMCV_SHADER_DIR; the script refuses when an anchor is no longer in the shader):
                the noise box (neither its narrowing nor its weight), with the box carried through the display
                encoding upwards only and the blend's weight everywhere (the resolve up to commit 39ee210), sized
                both ways with a history beyond it taken up at emcv_resolve_current_weight's weight (the resolve
-               of commit 3679e5a), and as built (also a neighbourhood shifted off this frame taken up at
-               emcv_resolve_shift_weight's).
+               of commit 3679e5a), also a neighbourhood shifted off this frame taken up at
+               emcv_resolve_shift_weight's (commit ae169b5), and as built (where the frame's noise is unknown, the
+               neighbourhood's box from the neighbours on the pixel's own surface alone).
 
     /usr/bin/python3 scripts/eval/resolve_noise.py [--build build] [--write-doc]
 
@@ -54,7 +55,11 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 RESOLVE = "render/resolve.comp.glsl"
 BOX = "        bool noise_box = !jitters() && noise_extent(p, local, current, extent);\n"
 NARROW = "        if (noise_box) emcv_resolve_narrow_to_noise(current, extent, lo, hi);\n"
-NO_BOX = [(RESOLVE, BOX, "        bool noise_box = false;\n")]
+# Where this frame's noise is unknown, the neighbourhood's box from all nine neighbours, whatever surface they show
+# (as up to commit ae169b5), not from those on the pixel's own surface (same_surface_moments).
+ALL_NEIGHBOURS = [(RESOLVE, "        if (!jitters() && !noise_box) {\n", "        if (false) {\n")]
+# No noise box at all (and so no box from the own surface where the noise is unknown, which is every pixel then).
+NO_BOX = [(RESOLVE, BOX, "        bool noise_box = false;\n")] + ALL_NEIGHBOURS
 # The current value's weight raised where the history lay beyond the box (emcv_resolve_current_weight) undone.
 BLEND_ONLY = [(RESOLVE, "        float weight = noise_box ? emcv_resolve_current_weight(history, current, extent) : float(EMCV_RESOLVE_BLEND);\n",
                "        float weight = float(EMCV_RESOLVE_BLEND);\n")]
@@ -85,7 +90,7 @@ CALIBRATION = [  # (scene, methods, extra arguments); frames 5-39, before any li
 CALIBRATION_FRAMES = range(5, 40)
 EFFECT_SCENES = ["static", "light-off", SCENES + "variations/burst-3.json", SCENES + "variations/camera-switch.json",
                  SCENES + "variations/fade.json", "moving", SCENES + "validation/skin-close.json",
-                 SCENES + "validation/skin-orbit.json", "flicker", "club"]
+                 SCENES + "validation/skin-orbit.json", SCENES + "validation/mixed-off.json", "flicker", "club"]
 NO_NOISE = [
     ("render/sss_burley.comp.glsl", "    float noise = keeps_noise ? emcv_sss_noise(sum_w, sum_w2, sum_w2l, sum_w2l2, scattered, n) : 1.0f;\n",
      "    float noise = 1.0f;\n"),
@@ -212,11 +217,12 @@ def main(argv):
         tables.append(("resolve-noise-cost", cost_table(a.build, costs, tmp)))
 
         dirs = {"without": make_variant(os.path.join(tmp, "without"), NO_BOX),
-                "upwards": make_variant(os.path.join(tmp, "upwards"), UPWARDS + BLEND_ONLY + NO_SHIFT),
-                "no shift": make_variant(os.path.join(tmp, "no-shift"), NO_SHIFT),
+                "upwards": make_variant(os.path.join(tmp, "upwards"), UPWARDS + BLEND_ONLY + NO_SHIFT + ALL_NEIGHBOURS),
+                "no shift": make_variant(os.path.join(tmp, "no-shift"), NO_SHIFT + ALL_NEIGHBOURS),
+                "all neighbours": make_variant(os.path.join(tmp, "all-neighbours"), ALL_NEIGHBOURS),
                 "as built": os.path.join(ROOT, "shaders")}
         variants = ("without the box", "the box sized upwards, the blend's weight", "sized both ways, its weight beyond it",
-                    "as built: and the shift's weight")
+                    "and the shift's weight", "as built: unknown noise, its own surface's box")
         lines = ["| scene | method | raw before | " + " | ".join(f"resolved before: {v}" for v in variants) +
                  " | raw after | " + " | ".join(f"resolved after: {v}" for v in variants) + " |",
                  "|---|---|" + "---:|" * (2 + 2 * len(variants))]

@@ -12,7 +12,8 @@
 // neighbourhood shows put back (emcv_resolve_target), and blended (include/emcv/port/resolve.h). Without jitter
 // the box is first narrowed to this frame's own noise, which the SSS pass stores beside its estimate
 // (emcv_resolve_narrow_to_noise): a history is kept only as far from this frame as its noise could take it, and
-// a pixel nothing sampled shows this frame's value. The history keeps
+// a pixel nothing sampled shows this frame's value; where that noise is unknown the neighbourhood's box comes
+// from the neighbours on the pixel's own surface (same_surface_moments). The history keeps
 // the resolved value and the pixel's view depth (0 for the background, which is never blended: it does not
 // change).
 #version 450 core
@@ -93,6 +94,33 @@ bool noise_extent(ivec2 p, ivec2 local, vec3 current, out vec3 extent) {
     extent = emcv_resolve_noise_extent(resolved_part(p) * exposure, emcv_ycocg_to_rgb(current), deviation * exposure,
                                        int(frame.ambient.w));
     return true;
+}
+
+/// The sums of the display values (YCoCg) and of their squares over p's 3x3 neighbours (tile position `local`)
+/// that show p's own surface (the same material, and a view depth within the adaptive history's tolerance of
+/// p's, emcv_history_same_depth), p among them; returns their count. The box of a pixel whose noise this frame
+/// cannot tell (emcv_sss_noise_unknown: fewer than two effective samples, as on a thin object's edge, whose
+/// samples mostly land off it) comes from these alone: another surface beside it (a lit floor behind a slab's
+/// edge) says nothing of what this pixel shows, and its values widened the box until it held the history of a
+/// light that had gone off (docs/frame.md, "The noise box").
+float same_surface_moments(ivec2 p, ivec2 local, float depth, out vec3 sum, out vec3 sum_squares) {
+    sum = vec3(0.0f);
+    sum_squares = vec3(0.0f);
+    float count = 0.0f;
+    uint code = emcv_render_material_code(p);
+    for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+            ivec2 q = p + ivec2(dx, dy);
+            if (!emcv_render_on_screen(q) || emcv_render_material_code(q) != code ||
+                !emcv_history_same_depth(emcv_render_depth(q), depth))
+                continue;
+            vec3 v = tile_ycocg[(local.x + dx) + (local.y + dy) * APRON_SIDE];
+            sum += v;
+            sum_squares += v * v;
+            count += 1.0f;
+        }
+    }
+    return count;
 }
 
 /// A linear colour as the display shows it, in YCoCg.
@@ -206,12 +234,19 @@ void main() {
                 filtered += emcv_resolve_filter_weight(dx, dy) * v;
             }
         }
-        vec3 lo, hi;
-        emcv_resolve_clip_box(sum, sum_squares, 9.0f, current, lo, hi);
         // Without jitter the box is also narrowed to this frame's own noise: under jitter the history also
         // anti-aliases, a difference from this frame that the SSS pass's noise does not measure.
         vec3 extent;
         bool noise_box = !jitters() && noise_extent(p, local, current, extent);
+        vec3 lo, hi;
+        if (!jitters() && !noise_box) {
+            // This frame's noise is unknown here (noise_extent): the box is its own surface's neighbours'.
+            vec3 same_sum, same_sum_squares;
+            float same_count = same_surface_moments(p, local, depth, same_sum, same_sum_squares);
+            emcv_resolve_clip_box(same_sum, same_sum_squares, same_count, current, lo, hi);
+        } else {
+            emcv_resolve_clip_box(sum, sum_squares, 9.0f, current, lo, hi);
+        }
         if (noise_box) emcv_resolve_narrow_to_noise(current, extent, lo, hi);
         vec3 spread = emcv_resolve_variance(sum, sum_squares, 9.0f);
         vec3 detailed = emcv_resolve_target(current, filtered, spread, history_variance);

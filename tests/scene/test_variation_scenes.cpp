@@ -170,3 +170,38 @@ TEST_CASE("the validation scenes are a skin close-up with light-off's lights and
         }
     }
 }
+
+TEST_CASE("the tabletop validation scene is mixed with its key light switching off at frame 30") {
+    // demo/scenes/validation/mixed-off.json: what differs from light-off is nearly everything but the event
+    // (several objects and materials, jade among them, thin edges in front of a lit floor); what differs from the
+    // built-in `mixed` is the length and the key light's step.
+    const scene base = load_scene_argument("mixed");
+    const auto path = source_dir() / "demo" / "scenes" / "validation" / "mixed-off.json";
+    const scene s = load_scene(path);
+    CHECK(s.name == "mixed-off");
+    CHECK(!s.description.empty());
+    CHECK(s.frames == 60);
+    std::ifstream in(path);
+    CHECK(nlohmann::json::parse(in).value("$schema", "") == "../scene.schema.json");
+    const auto names = builtin_scene_names();
+    CHECK(std::find(names.begin(), names.end(), "mixed-off") == names.end());
+
+    CHECK(s.mm_per_unit == base.mm_per_unit);
+    REQUIRE(s.meshes.size() == base.meshes.size());
+    for (std::size_t i = 0; i < s.meshes.size(); ++i) CHECK(s.meshes[i].indices == base.meshes[i].indices);
+    REQUIRE(s.materials.size() == base.materials.size());
+    for (std::size_t i = 0; i < s.materials.size(); ++i)
+        CHECK(s.materials[i].mean_free_path_mm == base.materials[i].mean_free_path_mm);
+    CHECK(s.objects.size() == base.objects.size());
+    CHECK(s.view.is_static());
+    CHECK(s.view.at(0) == base.view.at(0));
+
+    REQUIRE(s.lights.size() == 2u);
+    CHECK(named(s, "rim").intensity.is_constant());
+    CHECK(named(s, "rim").intensity.at(0) == named(base, "rim").intensity.at(0));
+    CHECK(named(s, "key").casts_shadow);
+    for (const auto& [f, v] : held(60, {{0, 2.5f}, {30, 0.0f}})) {
+        INFO("frame " << f);
+        CHECK(named(s, "key").intensity.at(f) == v);
+    }
+}
