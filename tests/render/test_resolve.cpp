@@ -256,7 +256,12 @@ TEST_CASE("a history whose noise box is unknown is held to its own surface: the 
     emcv::gl::debug_messenger messenger;
     render_options budget = options_with(resolve_mode::taa);
     add_define(budget.defines, "EMCV_HISTORY_SPP_BUDGET=8");
-    budget.width = 96;  // at 64x48 the slab's edge is a pixel or two wide
+    // 96x72, not the usual 64x48: there the slab's edge is a pixel or two wide and the jade sphere's own surface
+    // holds a rim-lit pixel beside its dark edge, which opens even the own surface's box; the loss over frames
+    // 30-32 is then 3.0-4.0 dB (`emcv-demo --scene demo/scenes/validation/mixed-off.json --size 64x48 --method
+    // spvg,cv,cv-notex --spp-budget 8 --frames 33 --out DIR`, SSS pixels from metrics.csv), a limit of the
+    // neighbourhood box itself (docs/frame.md, "Known limits").
+    budget.width = 96;
     budget.height = 72;
     const scene s = load_scene_argument(std::string(EMCV_SOURCE_DIR) + "/demo/scenes/validation/mixed-off.json");
     std::vector<renderer> noisy;
