@@ -1,0 +1,108 @@
+# SPDX-License-Identifier: MIT
+"""What a moving camera leaves the resolve: the history's resampling against this frame's noise, and the best a
+plain exponential blend does there (docs/frame.md, "A moving camera still costs the resolve most of its gain").
+
+`moving` (the camera orbits the statuette; still lights), frames 0-29, PSNR of the whole frame against the
+reference, mean over frames 5-29, at four image sizes, for `burley-8` (the noisy input the resolve is for) and
+`burley-256` (nearly noise free: its raw frame is within about 60 dB of the reference, so what its resolved image
+loses is the history's own error, not noise). Resolves:
+
+  as built     this tree's resolve (clip box, noise box, its weights).
+  plain w      a variant of this tree's shaders (a copy with a text replacement, read through EMCV_SHADER_DIR): no
+               clip at all, the reprojected history blended with the current value at the fixed weight w
+               (EMCV_RESOLVE_BLEND = w), for w = 0.1, 0.25, 0.5. On independent noise alone it would gain
+               10 log10((2 - w) / w): 12.8, 8.5 and 4.8 dB; what it gains less is the history's error. Its best w
+               is an upper reference for any resolve that blends a reprojected history at one weight.
+
+For `burley-256` under `plain 0.5` the resolved image's error is about one frame's worth of the history's
+resampling and lag (the lag of an exponential blend of weight w behind a steady change d a frame is
+d (1 - w) / w, d at w = 0.5): the "history drift" column, in dB of PSNR. Where it is near `burley-8`'s raw PSNR,
+the history a frame old is as far off as this frame's noise and no reprojecting blend can gain much.
+
+    /usr/bin/python3 scripts/eval/resolve_motion.py [--build build] [--write-doc]
+
+With --write-doc the table replaces the GENERATED block "resolve-motion" of docs/frame.md.
+"""
+import argparse
+import csv
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+from adaptive_overhead import make_variant
+from run_eval import git_commit, replace_block, write_atomically
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+DOC = os.path.join(ROOT, "docs", "frame.md")
+RESOLVE = "render/resolve.comp.glsl"
+# The resolve without any clip or weight rule: the reprojected history blended at EMCV_RESOLVE_BLEND.
+PLAIN = [(RESOLVE, "        resolved = emcv_resolve_blend(emcv_resolve_clip(history, target, lo, hi), current, weight);\n",
+          "        resolved = emcv_resolve_blend(history, current, float(EMCV_RESOLVE_BLEND));\n")]
+SIZES = ["96x96", "128x128", "192x192", "256x256"]
+PLAIN_WEIGHTS = ["0.1", "0.25", "0.5"]
+FRAMES, FIRST = 30, 5
+METHODS = ["burley-8", "burley-256"]
+
+
+def run(build, size, shader_dir, defines, out):
+    cmd = [os.path.join(build, "bin", "emcv-demo"), "--scene", "moving", "--method", ",".join(METHODS), "--size",
+           size, "--frames", str(FRAMES), "--resolve", "taa", "--no-frames", "--out", out]
+    for d in defines:
+        cmd += ["--define", d]
+    done = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, EMCV_SHADER_DIR=shader_dir))
+    if done.returncode != 0:
+        sys.exit("resolve_motion: %s failed:\n%s" % (" ".join(cmd), done.stderr))
+    with open(os.path.join(out, "metrics.csv")) as f:
+        rows = [r for r in csv.DictReader(f) if int(r["frame"]) >= FIRST]
+    result = {}
+    for m in METHODS:
+        own = [r for r in rows if r["method"] == m]
+        if len(own) != FRAMES - FIRST:
+            sys.exit(f"resolve_motion: {m} has {len(own)} frames from {FIRST} on, not {FRAMES - FIRST}")
+        raw = [float(r["psnr_db"]) for r in own]
+        resolved = [float(r["psnr_resolved_db"]) for r in own]
+        if not all(math.isfinite(v) for v in raw + resolved):
+            sys.exit(f"resolve_motion: {m} has a non-finite PSNR")
+        result[m] = (sum(raw) / len(raw), sum(resolved) / len(resolved))
+    return result
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--build", default=os.path.join(ROOT, "build"))
+    ap.add_argument("--write-doc", action="store_true")
+    a = ap.parse_args()
+    with tempfile.TemporaryDirectory(prefix="emcv-resolve-motion-") as tmp:
+        plain_dir = make_variant(os.path.join(tmp, "plain"), PLAIN)
+        built_dir = os.path.join(ROOT, "shaders")
+        lines = ["| size | burley-8 raw | as built | plain 0.1 | plain 0.25 | plain 0.5 | burley-256 raw | as built | "
+                 "history drift (plain 0.5) |", "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+        for size in SIZES:
+            built = run(a.build, size, built_dir, [], os.path.join(tmp, f"built-{size}"))
+            plain = {w: run(a.build, size, plain_dir, [f"EMCV_RESOLVE_BLEND={w}"], os.path.join(tmp, f"plain-{w}-{size}"))
+                     for w in PLAIN_WEIGHTS}
+            raw8, raw256 = built["burley-8"][0], built["burley-256"][0]
+
+            def gain(resolved, raw):
+                return f"{resolved:.2f} ({resolved - raw:+.2f})"
+
+            lines.append("| " + " | ".join([size, f"{raw8:.2f}", gain(built["burley-8"][1], raw8)]
+                                          + [gain(plain[w]["burley-8"][1], raw8) for w in PLAIN_WEIGHTS]
+                                          + [f"{raw256:.2f}", gain(built["burley-256"][1], raw256),
+                                             f"{plain['0.5']['burley-256'][1]:.2f}"]) + " |")
+            print(lines[-1], flush=True)
+    body = "\n".join([f"Regenerated by `/usr/bin/python3 scripts/eval/resolve_motion.py --write-doc`, made at commit "
+                      f"{git_commit()}. PSNR (dB, whole frame), mean over frames {FIRST}-{FRAMES - 1} of `moving`; "
+                      "resolved columns with their gain over the raw frames.", ""] + lines)
+    print(body)
+    if a.write_doc:
+        with open(DOC) as f:
+            text = f.read()
+        write_atomically(DOC, replace_block(text, "resolve-motion", body, DOC))
+        print(f"wrote {os.path.relpath(DOC, ROOT)}")
+
+
+if __name__ == "__main__":
+    main()
