@@ -245,9 +245,14 @@ void make_resolve_targets(gpu_resources& r) {
     r.resolve_history = make_cleared_target(GL_RGBA32F, r.width, r.height);
     r.resolve_history_previous = make_cleared_target(GL_RGBA32F, r.width, r.height);  // depth 0: no history
     r.resolved_display = make_target(GL_RGBA8, r.width, r.height);
+    r.resolve_guide = make_cleared_target(GL_RGBA16F, r.width, r.height);
+    r.resolve_guide_previous = make_cleared_target(GL_RGBA16F, r.width, r.height);
 }
 
-void swap_resolve_history(gpu_resources& r) { std::swap(r.resolve_history, r.resolve_history_previous); }
+void swap_resolve_history(gpu_resources& r) {
+    std::swap(r.resolve_history, r.resolve_history_previous);
+    std::swap(r.resolve_guide, r.resolve_guide_previous);
+}
 
 void forget_resolve_history(gpu_resources& r) {
     glClearTexImage(r.resolve_history_previous.id(), 0, GL_RED, GL_FLOAT, nullptr);

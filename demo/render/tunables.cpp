@@ -34,6 +34,8 @@ const std::vector<tunable>& tunables() {
          EMCV_RESOLVE_CLIP_SIGMA},
         {"EMCV_RESOLVE_NOISE_SIGMA", t::real, 0.0, 16.0, true,
          "temporal resolve: noise box half-width in std devs of the frame's noise", EMCV_RESOLVE_NOISE_SIGMA},
+        {"EMCV_RESOLVE_GUIDE", t::integer, 0, 1, false, "temporal resolve: 1 moves the history by the guide's change",
+         EMCV_RESOLVE_GUIDE},
     };
     return all;
 }

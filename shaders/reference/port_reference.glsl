@@ -159,6 +159,11 @@ void main() {
     const vec4 previous = imageLoad(display, texel);
     const vec4 taps = emcv_resolve_catmull_rom(fract(float(frame_index) * 0.25f));  // a resampled history's weights
     vec3 history = emcv_rgb_to_ycocg(previous.rgb) * (taps.x + taps.y + taps.z + taps.w);
+    // The guide (resolve.h): the unscattered light times the albedo, its change since the history from the
+    // history's own value (here the history stands in for last frame's guide), at the slope of a one-pixel fit
+    // (no spread: 0, the history as it is).
+    const vec3 guide = emcv_rgb_to_ycocg(emcv_display_encode(albedo * scattered, int(frame_index & 1u)));
+    history = emcv_resolve_guided_history(history, emcv_resolve_guide_slope(vec3(0.0f), vec3(0.0f), 1.0f), guide, history);
     vec3 lo, hi;
     emcv_resolve_clip_box(shown, shown * shown, 1.0f, shown, lo, hi);
     // The noise box (resolve.h): this pixel's own variance as its neighbourhood's (one pixel here), its deviation

@@ -34,6 +34,7 @@
 #define EMCV_RENDER_TEX_RESOLVE_CURRENT 18  // resolve: the composite's linear HDR image
 #define EMCV_RENDER_TEX_RESOLVE_HISTORY 19  // resolve: last frame's resolved display values and view depth
 #define EMCV_RENDER_TEX_SSS_COUNT 20       // resolve: samples per pixel (R32UI) of this frame's burley pass
+#define EMCV_RENDER_TEX_RESOLVE_GUIDE 21   // resolve: last frame's guide (the unscattered composite, display YCoCg)
 
 // Images written by compute passes: image units are their own small space (0..7, EMCV_MAX_IMAGE_UNITS in
 // emcv/port/bindings.h; NVIDIA has 8), so passes that never run together share units, and each pass binds its
@@ -47,6 +48,7 @@
 #define EMCV_RENDER_IMG_DISPLAY 1      // composite: tonemapped, sRGB-encoded
 #define EMCV_RENDER_IMG_RESOLVE_HISTORY 0  // resolve: this frame's resolved display values and view depth
 #define EMCV_RENDER_IMG_RESOLVED 1     // resolve: the resolved display image (RGBA8)
+#define EMCV_RENDER_IMG_RESOLVE_GUIDE 2  // resolve: this frame's guide
 
 // Material kinds in materials[i].albedo.w
 #define EMCV_RENDER_MATERIAL_DIFFUSE 0

@@ -13,9 +13,12 @@
 // the box is first narrowed to this frame's own noise, which the SSS pass stores beside its estimate
 // (emcv_resolve_narrow_to_noise): a history is kept only as far from this frame as its noise could take it, and
 // a pixel nothing sampled shows this frame's value; where that noise is unknown the neighbourhood's box comes
-// from the neighbours on the pixel's own surface (same_surface_moments). The history keeps
-// the resolved value and the pixel's view depth (0 for the background, which is never blended: it does not
-// change).
+// from the neighbours on the pixel's own surface (same_surface_moments). Without jitter the reprojected history
+// is first moved by the change of a noise-free guide (the unscattered diffuse light times the albedo), resampled
+// exactly as the history was, as far as the pixel's neighbourhood follows the guide's detail
+// (emcv_resolve_guided_history): what resampling and a changing light did to the history, the guide shows
+// without noise. The history keeps the resolved value and the pixel's view depth (0 for the background, which is
+// never blended: it does not change), the guide texture this frame's guide.
 #version 450 core
 
 #include "emcv/port/resolve.h"
@@ -29,6 +32,8 @@ layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_RESOLVE_CURRENT)) uniform sampler2D c
 layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_RESOLVE_HISTORY)) uniform sampler2D history_previous;
 layout(rgba32f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_RESOLVE_HISTORY)) writeonly uniform image2D history_out;
 layout(rgba8, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_RESOLVED)) writeonly uniform image2D resolved_out;
+layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_RESOLVE_GUIDE)) uniform sampler2D guide_previous;
+layout(rgba16f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_RESOLVE_GUIDE)) writeonly uniform image2D guide_out;
 
 // This frame's SSS output, whose alpha holds its noise (emcv_sss_noise), and the samples each pixel took.
 layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_SSS_IN)) uniform sampler2D scattered_noise;
@@ -37,8 +42,13 @@ layout(EMCV_LAYOUT_BINDING(EMCV_RENDER_TEX_SSS_COUNT)) uniform usampler2D sample
 #define APRON_SIDE (EMCV_RENDER_TILE_SIZE + 2)
 shared vec3 tile_ycocg[APRON_SIDE * APRON_SIDE];
 shared float tile_noise[APRON_SIDE * APRON_SIDE];
+shared vec3 tile_guide[APRON_SIDE * APRON_SIDE];  // the guide (guide_part), where guided() holds
 
 bool jitters() { return (frame.counters.w & EMCV_RENDER_FLAG_JITTER) != 0u; }
+
+/// Whether the history follows the guide (EMCV_RESOLVE_GUIDE; not under jitter, where the history is meant to
+/// hold the pixel's area, which this frame's point-sampled guide does not show).
+bool guided() { return EMCV_RESOLVE_GUIDE != 0 && !jitters(); }
 
 /// The part of the composite at q (clamped to the screen) that the resolve filters, linear: without jitter the
 /// scattered light alone, the composite less its specular radiance. The specular light of the scene's lights is
@@ -128,6 +138,43 @@ vec3 display_ycocg(vec3 linear) {
     return emcv_rgb_to_ycocg(emcv_display_encode(linear * frame.background.w, int(frame.ambient.w)));
 }
 
+/// The guide at q (clamped to the screen): the resolved part without the SSS pass's sampling, in display YCoCg
+/// (`resolved`: display_ycocg of resolved_part(q)). At a pixel that scatters, the albedo times the lighting
+/// pass's diffuse light, the SSS pass's input, which nothing samples; elsewhere the resolved part itself. Each
+/// value is rounded to binary16 here, so that the guide texture stores it exactly (llvmpipe's binary16 store
+/// truncates; hardware rounds) and a guide that did not change reads back equal to this frame's.
+vec3 guide_part(ivec2 q, vec3 resolved) {
+    q = clamp(q, ivec2(0), ivec2(frame.viewport.xy) - 1);
+    vec3 guide = resolved;
+    if (emcv_render_scatters(emcv_render_material_code(q)))
+        guide = display_ycocg(texelFetch(gbuffer_albedo, q, 0).xyz * texelFetch(lit_diffuse, q, 0).xyz);
+    return vec3(unpackHalf2x16(packHalf2x16(guide.xy)), unpackHalf2x16(packHalf2x16(vec2(guide.z, 0.0f))).x);
+}
+
+/// The guide slope at the tile position `local` (emcv_resolve_guide_slope) over its 3x3 neighbourhood.
+vec3 guide_slope(ivec2 local) {
+    vec3 guide_mean = vec3(0.0f), value_mean = vec3(0.0f);
+    for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+            uint i = uint((local.x + dx) + (local.y + dy) * APRON_SIDE);
+            guide_mean += tile_guide[i];
+            value_mean += tile_ycocg[i];
+        }
+    }
+    guide_mean /= 9.0f;
+    value_mean /= 9.0f;
+    vec3 guide_variance_sum = vec3(0.0f), covariance_sum = vec3(0.0f);
+    for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+            uint i = uint((local.x + dx) + (local.y + dy) * APRON_SIDE);
+            vec3 g = tile_guide[i] - guide_mean;
+            guide_variance_sum += g * g;
+            covariance_sum += g * (tile_ycocg[i] - value_mean);
+        }
+    }
+    return emcv_resolve_guide_slope(guide_variance_sum, covariance_sum, 9.0f);
+}
+
 /// Under the camera's jitter (EMCV_RENDER_FLAG_JITTER) a pixel on a silhouette shows the object on some frames
 /// and what lies behind it on others, and its history rightly holds their mix: there a history texel is of this
 /// pixel when its stored depth is that of any surface the pixel's 3x3 neighbourhood shows now (each at its
@@ -158,10 +205,12 @@ bool history_of_pixel(float history_depth, float expected_depth, ivec2 local) {
 /// the variance of the history's own 3x3 neighbourhood there (the texels around the one the position falls
 /// nearest, among the 4x4 the resampling reads, each where it shows this surface): the detail the clip's target
 /// keeps (emcv_resolve_target); and that neighbourhood's mean, where all 9 texels show this surface (else
-/// `history_mean_known` is false).
+/// `history_mean_known` is false); and, where guided(), last frame's guide resampled with the same weights over the
+/// same texels (`guide_history`).
 bool reprojected_history(ivec2 p, float depth, ivec2 local, out vec3 history, out vec3 history_variance,
-                         out vec3 history_mean, out bool history_mean_known) {
+                         out vec3 history_mean, out bool history_mean_known, out vec3 guide_history) {
     history = vec3(0.0f);
+    guide_history = vec3(0.0f);
     history_variance = vec3(0.0f);
     history_mean = vec3(0.0f);
     history_mean_known = false;
@@ -185,6 +234,7 @@ bool reprojected_history(ivec2 p, float depth, ivec2 local, out vec3 history, ou
             if (!history_of_pixel(texel.w, expected_depth, local)) continue;
             if (w != 0.0f) {
                 history += w * texel.xyz;
+                if (guided()) guide_history += w * texelFetch(guide_previous, q, 0).xyz;
                 weight_sum += w;
             }
             if (near) {
@@ -197,6 +247,7 @@ bool reprojected_history(ivec2 p, float depth, ivec2 local, out vec3 history, ou
     // Too little of the kernel's weight on this surface (a disocclusion, or only negative lobes): no history.
     if (!(weight_sum > 0.5f)) return false;
     history /= weight_sum;
+    guide_history /= weight_sum;
     if (near_count > 0.0f) history_variance = emcv_resolve_variance(near_sum, near_sum_squares, near_count);
     history_mean_known = near_count == 9.0f;
     if (history_mean_known) history_mean = near_sum / 9.0f;
@@ -209,6 +260,7 @@ void main() {
     for (uint i = gl_LocalInvocationIndex; i < uint(APRON_SIDE * APRON_SIDE); i += uint(EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE)) {
         ivec2 q = origin + ivec2(int(i) % APRON_SIDE, int(i) / APRON_SIDE);
         tile_ycocg[i] = display_ycocg(resolved_part(q));
+        if (guided()) tile_guide[i] = guide_part(q, tile_ycocg[i]);
         if (!jitters()) tile_noise[i] = noise_at(q);
         if (jitters()) tile_previous_depth[i] = previous_depth_at(q);
     }
@@ -219,12 +271,16 @@ void main() {
     vec3 current = tile_ycocg[local.x + local.y * APRON_SIDE];
     float depth = emcv_render_depth(p);
     vec3 resolved = current;
-    vec3 history, history_variance, history_mean;
+    vec3 history, history_variance, history_mean, guide_history;
     bool history_mean_known;
     // The background is blended only under jitter (its silhouette pixels mix with the object's); without
     // jitter it does not change and is shown as it is.
     if ((depth > 0.0f || jitters()) &&
-        reprojected_history(p, depth, local, history, history_variance, history_mean, history_mean_known)) {
+        reprojected_history(p, depth, local, history, history_variance, history_mean, history_mean_known,
+                            guide_history)) {
+        if (guided())
+            history = emcv_resolve_guided_history(history, guide_slope(local), tile_guide[local.x + local.y * APRON_SIDE],
+                                                  guide_history);
         vec3 sum = vec3(0.0f), sum_squares = vec3(0.0f), filtered = vec3(0.0f);
         for (int dy = -1; dy <= 1; ++dy) {
             for (int dx = -1; dx <= 1; ++dx) {
@@ -261,6 +317,7 @@ void main() {
         resolved = emcv_resolve_blend(emcv_resolve_clip(history, target, lo, hi), current, weight);
     }
     imageStore(history_out, p, vec4(resolved, depth));
+    if (guided()) imageStore(guide_out, p, vec4(tile_guide[local.x + local.y * APRON_SIDE], 0.0f));
     vec3 shown = emcv_ycocg_to_rgb(resolved);
     // The specular light added back to the resolved scattered light where it was taken out, in linear (through
     // the display's inverse: adding it in display space would carry this frame's noise through the tonemap's

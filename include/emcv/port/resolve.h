@@ -11,6 +11,8 @@
 // TUNABLES   EMCV_RESOLVE_BLEND ........ weight of the current frame in the blend, (0, 1]; default 0.1
 //            EMCV_RESOLVE_CLIP_SIGMA ... half-width of the clip box in neighbourhood standard deviations,
 //                                        (0, 4]; default 1
+//            EMCV_RESOLVE_GUIDE ........ 1: the history follows the change of a noise-free guide
+//                                        (emcv_resolve_guided_history), 0: off; default 1
 #ifndef EMCV_PORT_RESOLVE_H
 #define EMCV_PORT_RESOLVE_H
 
@@ -30,6 +32,14 @@
 /// (Salvi 2016's variance clipping, gamma = 1). Range (0, 4].
 #ifndef EMCV_RESOLVE_CLIP_SIGMA
 #define EMCV_RESOLVE_CLIP_SIGMA 1.0f
+#endif
+
+/// 1: the reprojected history is moved by the change that a noise-free guide image shows at the pixel since the
+/// history was made, in proportion to how much of the guide's detail the pixel's neighbourhood follows
+/// (emcv_resolve_guide_slope, emcv_resolve_guided_history); 0: the history as reprojected. A switch for
+/// comparisons (docs/frame.md, "The guide"), not a value to tune. Range {0, 1}.
+#ifndef EMCV_RESOLVE_GUIDE
+#define EMCV_RESOLVE_GUIDE 1
 #endif
 
 EMCV_PORT_BEGIN
@@ -234,6 +244,35 @@ EMCV_FN float emcv_resolve_shift_weight(EMCV_IN(vec3) mean_difference, EMCV_IN(v
     }
     float k2 = float(EMCV_RESOLVE_NOISE_SIGMA) * float(EMCV_RESOLVE_NOISE_SIGMA);
     return z2 > k2 ? emcv_resolve_least_error_weight((z2 - 1.0f) / n) : 0.0f;
+}
+
+/// The guide slope per channel: how much of the guide's detail the resolved values follow around a pixel, the
+/// least-squares slope b of the local linear model value = a + b guide over its 3x3 neighbourhood (the guided
+/// filter's model, He et al. 2010), from the neighbourhood's centred sums: `guide_variance_sum` = sum of
+/// (g - mean g)^2, `covariance_sum` = sum of (g - mean g) (v - mean v). This frame's noise is in the values, not
+/// in the guide, so it does not bias b (it is independent of g); it spreads it, and b is clamped to [0, 1]: the
+/// scattered light holds at most the unscattered light's detail (a blur never sharpens) and does not invert
+/// it. Where the guide's 3x3 standard deviation is under half an 8-bit display step (the clip box's floor,
+/// emcv_resolve_clip), the guide shows no detail to regress on and the slope is 0.
+EMCV_FN vec3 emcv_resolve_guide_slope(EMCV_IN(vec3) guide_variance_sum, EMCV_IN(vec3) covariance_sum, float n) {
+    vec3 slope = vec3(0.0f);
+    float floor_variance = n * (0.5f / 255.0f) * (0.5f / 255.0f);
+    for (int c = 0; c < 3; ++c)
+        if (guide_variance_sum[c] > floor_variance) slope[c] = clamp(covariance_sum[c] / guide_variance_sum[c], 0.0f, 1.0f);
+    return slope;
+}
+
+/// The reprojected history moved by the change of a noise-free guide: history + slope (guide - guide_history),
+/// where `guide` is the guide at the pixel now and `guide_history` the last frame's guide resampled exactly as
+/// the history was (the same position, kernel and texels). The guide is the image without what the resolve
+/// averages (the renderer's: the unscattered diffuse light times the albedo, which has no samples). Resampling a
+/// history shifts and blurs the detail it holds, and a light that changes moves it off this frame; the guide
+/// undergoes the same resampling and the same change, exactly, so its difference is the history's error as far
+/// as the history follows the guide's detail (slope, emcv_resolve_guide_slope). A still camera under still
+/// lights has guide == guide_history: the history is unchanged.
+EMCV_FN vec3 emcv_resolve_guided_history(EMCV_IN(vec3) history, EMCV_IN(vec3) slope, EMCV_IN(vec3) guide,
+                                         EMCV_IN(vec3) guide_history) {
+    return history + slope * (guide - guide_history);
 }
 
 /// One resolve step: the clipped history blended with the current value, current weight `weight`.

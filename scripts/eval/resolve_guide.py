@@ -1,0 +1,159 @@
+# SPDX-License-Identifier: MIT
+"""The resolve's guide: what moving the reprojected history by the change of the noise-free guide gains, and what
+it costs (docs/frame.md, "Temporal resolve", step 2).
+
+The resolve moves its reprojected history by slope (guide - guide_history) (include/emcv/port/resolve.h,
+emcv_resolve_guided_history): the guide is the unscattered diffuse light times the albedo in display YCoCg,
+`guide_history` last frame's guide resampled with the history's own weights, and the slope the least-squares
+slope of the current values on the guide over the pixel's 3x3 neighbourhood (emcv_resolve_guide_slope). The same
+binary runs with the guide (as built) and without it (`--define EMCV_RESOLVE_GUIDE=0`). Two tables:
+
+  effect  resolve_table.py's columns for both (PSNR of the whole frame, mean over frames 20 up to the scene's
+          first light change, "before", and over the 30 frames from it, "after"; lag: frames after the change
+          until the resolved PSNR stays within 1 dB of its settled value), 96x96, the adaptive methods at a budget
+          of 8, on the scenes of docs/frame.md's resolve table: still cameras (`static`, light-off, the burst, the
+          fade, the skin close-up, the tabletop), moving ones (`moving`, the camera move during the switch, the
+          skin orbit). The stochastic methods only: nothing in diffuse's and separable's frames is sampled, so the
+          noise box closes on the current value with or without the guide.
+  cost    the resolve pass's time (wall clock, llvmpipe: work, not GPU time) with and without the guide,
+          `burley-8` at 256x256 on `static` (a still camera: one history texel per pixel) and on `moving` (16),
+          5 rounds alternating the two, the pass's median over frames 4-29, the median round.
+
+    /usr/bin/python3 scripts/eval/resolve_guide.py [--build build] [--write-doc]
+
+With --write-doc the tables replace the GENERATED blocks "resolve-guide-effect" and "resolve-guide-cost" of
+docs/frame.md.
+"""
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+
+from resolve_table import lag, mean, number, run_scene
+from run_eval import git_commit, replace_block, write_atomically
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+DOC = os.path.join(ROOT, "docs", "frame.md")
+NO_GUIDE = "EMCV_RESOLVE_GUIDE=0"
+SCENES = ["static", "light-off", "demo/scenes/variations/burst-3.json", "demo/scenes/variations/fade.json",
+          "demo/scenes/validation/skin-close.json", "demo/scenes/validation/mixed-off.json", "moving",
+          "demo/scenes/variations/camera-switch.json", "demo/scenes/validation/skin-orbit.json"]
+BUDGET = 8
+METHODS = [f"burley-{BUDGET}", "spvg", "cv", "cv-notex"]
+SETTLED_FROM, WINDOW = 20, 30  # resolve_table.py's windows
+COST_SCENES = ["static", "moving"]
+COST_ROUNDS = 5
+
+
+def spans(rows, change):
+    frames = sorted({int(r["frame"]) for r in rows})
+    before = [f for f in frames if f >= SETTLED_FROM and (change is None or f < change)]
+    after = [f for f in frames if change is not None and change <= f < change + WINDOW]
+    return before, after
+
+
+def summary(rows, change, method):
+    """(raw before, resolved before, raw after, resolved after, lag) of one method; None where a span is empty."""
+    own = {int(r["frame"]): r for r in rows if r["method"] == method}
+    if not own:
+        sys.exit(f"resolve_guide.py: no rows of {method}")
+    raw = {f: number(own[f]["psnr_db"]) for f in own}
+    resolved = {f: number(own[f]["psnr_resolved_db"]) for f in own}
+    before, after = spans(rows, change)
+    return (mean([raw.get(f) for f in before]), mean([resolved.get(f) for f in before]),
+            mean([raw.get(f) for f in after]), mean([resolved.get(f) for f in after]),
+            lag(resolved, change) if change is not None else None)
+
+
+def cell(value, digits=2, sign=False):
+    if value is None:
+        return "-"
+    return f"{value:+.{digits}f}" if sign else f"{value:.{digits}f}"
+
+
+def effect_table(build, tmp):
+    lines = ["| scene | method | raw before | resolved before: no guide | guide | gain | raw after | "
+             "resolved after: no guide | guide | gain | lag: no guide | guide |",
+             "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for scene in SCENES:
+        name = os.path.splitext(os.path.basename(scene))[0]
+        guided, change = run_scene(build, scene, METHODS, "96x96", BUDGET, os.path.join(tmp, f"guide-{name}"))
+        unguided, change_unguided = run_scene(build, scene, METHODS, "96x96", BUDGET,
+                                              os.path.join(tmp, f"no-guide-{name}"), [NO_GUIDE])
+        if change != change_unguided:
+            sys.exit(f"resolve_guide.py: {scene}: the light change moved with the guide ({change_unguided} -> {change})")
+        for m in METHODS:
+            g, u = summary(guided, change, m), summary(unguided, change, m)
+            gain_before = None if g[1] is None or u[1] is None else g[1] - u[1]
+            gain_after = None if g[3] is None or u[3] is None else g[3] - u[3]
+            lines.append("| " + " | ".join([name, m, cell(g[0]), cell(u[1]), cell(g[1]), cell(gain_before, sign=True),
+                                            cell(g[2]), cell(u[3]), cell(g[3]), cell(gain_after, sign=True),
+                                            "-" if u[4] is None else str(u[4]),
+                                            "-" if g[4] is None else str(g[4])]) + " |")
+            print(lines[-1], flush=True)
+    return "\n".join(lines)
+
+
+def resolve_median(build, scene, defines, out):
+    """The resolve pass's median time over frames 4-29 of burley-8 on `scene`, 256x256."""
+    cmd = [os.path.join(build, "bin", "emcv-demo"), "--scene", scene, "--size", "256x256", "--frames", "30",
+           "--method", f"burley-{BUDGET}", "--resolve", "taa", "--timing", "wall", "--no-frames", "--out", out]
+    for d in defines:
+        cmd += ["--define", d]
+    done = subprocess.run(cmd, capture_output=True, text=True)
+    if done.returncode != 0:
+        sys.exit(f"resolve_guide.py: {' '.join(cmd)} failed:\n{done.stderr}")
+    with open(os.path.join(out, "metrics.json")) as f:
+        rows = json.load(f)["rows"]
+    times = [p["ms"] for r in rows if r["method"] == f"burley-{BUDGET}" and r["frame"] >= 4
+             for p in r["passes"] if p["name"] == "resolve"]
+    if len(times) != 26:
+        sys.exit(f"resolve_guide.py: {len(times)} resolve times on {scene}, not 26")
+    return statistics.median(times)
+
+
+def cost_table(build, tmp):
+    lines = ["| scene | camera | resolve without the guide (ms) | with it (ms) | with / without |", "|---|---|---:|---:|---:|"]
+    for scene in COST_SCENES:
+        rounds = {"without": [], "with": []}
+        for k in range(COST_ROUNDS):
+            order = [("without", [NO_GUIDE]), ("with", [])]
+            for name, defines in (order if k % 2 == 0 else reversed(order)):
+                rounds[name].append(resolve_median(build, scene, defines, os.path.join(tmp, f"cost-{scene}-{name}-{k}")))
+        without, with_guide = statistics.median(rounds["without"]), statistics.median(rounds["with"])
+        camera = "moving" if scene == "moving" else "still"
+        lines.append(f"| {scene} | {camera} | {without:.3f} | {with_guide:.3f} | {with_guide / without:.2f} |")
+        print(lines[-1], flush=True)
+    return "\n".join(lines)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--build", default=os.path.join(ROOT, "build"))
+    ap.add_argument("--write-doc", action="store_true")
+    a = ap.parse_args()
+    made = f"made at commit {git_commit()}"
+    with tempfile.TemporaryDirectory(prefix="emcv-resolve-guide-") as tmp:
+        effect = effect_table(a.build, tmp)
+        cost = cost_table(a.build, tmp)
+    command = "`/usr/bin/python3 scripts/eval/resolve_guide.py --write-doc`"
+    effect_body = "\n".join([f"Regenerated by {command}, {made}. PSNR (dB, whole frame), 96x96, the adaptive methods "
+                             f"at a budget of {BUDGET}; gain: with the guide less without.", "", effect])
+    cost_body = "\n".join([f"Regenerated by {command}, {made}. Wall clock on llvmpipe (work, not GPU time), "
+                           f"burley-{BUDGET} at 256x256, median over frames 4-29, the median of {COST_ROUNDS} "
+                           "alternating rounds.", "", cost])
+    print(effect_body + "\n\n" + cost_body)
+    if a.write_doc:
+        with open(DOC) as f:
+            text = f.read()
+        text = replace_block(text, "resolve-guide-effect", effect_body, DOC)
+        text = replace_block(text, "resolve-guide-cost", cost_body, DOC)
+        write_atomically(DOC, text)
+        print(f"wrote {os.path.relpath(DOC, ROOT)}")
+
+
+if __name__ == "__main__":
+    main()
