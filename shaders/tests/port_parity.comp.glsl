@@ -8,6 +8,7 @@
 #include "emcv/port/cv.h"
 #include "emcv/port/samples.h"
 #include "emcv/port/burley.h"
+#include "emcv/port/resolve.h"
 #include "tests/parity_bindings.h"
 #include "tests/parity_stream.h"
 
@@ -48,4 +49,12 @@ void main() {
     results[base + 2u] = vec4(float(n), uintBitsToFloat(cov.count), uintBitsToFloat(cov.rejected), q);
     results[base + 3u] = vec4(r_exact, emcv_burley_sample_spvg(u, d), emcv_burley_cdf(r_exact, d),
                               emcv_burley_pdf(r_exact, d));
+    // The resolve's guide (resolve.h) on the stream's statistics as centred sums, values and history, the sums
+    // scaled by 2^-(pixel % 32) (exact) so that they span the slope's half-step floor.
+    float scale = exp2(-float(pixel % 32u));
+    vec3 slope = emcv_resolve_guide_slope(scale * vec3(cov.cov.z, cov.cov.x, res.variance),
+                                          scale * vec3(cov.cov.y, -cov.cov.y, res.variance * cov.mean.x), 9.0f);
+    vec3 moved = emcv_resolve_guided_history(vec3(cov.mean, res.mean), slope, vec3(last, q),
+                                             vec3(cov.mean.y, cov.mean.x, res.variance));
+    results[base + 4u] = vec4(slope.x, slope.z, moved.x, moved.z);
 }

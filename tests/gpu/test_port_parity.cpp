@@ -24,6 +24,7 @@
 #include <emcv/port/burley.h>
 #include <emcv/port/cv.h>
 #include <emcv/port/ema.h>
+#include <emcv/port/resolve.h>
 #include <emcv/port/samples.h>
 
 #include "../../shaders/tests/parity_bindings.h"
@@ -97,11 +98,13 @@ std::vector<glm::vec4> run_port_cpu() {
     for (std::uint32_t pixel = 0; pixel < kPixels; ++pixel) {
         port::EmcvEmcm2 cov = port::emcv_emcm2_init();
         port::EmcvMovingStats res = port::emcv_moving_stats_init();
+        glm::vec2 last(0.0f);
         for (std::uint32_t k = 0; k < kUpdates; ++k) {
             const glm::vec2 x = port::emcv_parity_sample(pixel, k, kUpdates, kSeed);
             const float alpha = port::emcv_cv_coefficient_emcm2(cov);
             port::emcv_moving_stats_push(res, port::emcv_cv_residual(x.x, alpha, x.y), kEtaRes);
             port::emcv_emcm2_push(cov, x, kEtaCov);
+            last = x;
         }
         const float q = res.variance / kTarget;
         const int n = port::emcv_sample_count(res.variance, kTarget, kNMin, kNMax);
@@ -114,6 +117,14 @@ std::vector<glm::vec4> run_port_cpu() {
                                   glm::uintBitsToFloat(cov.rejected), q);
         out[base + 3] = glm::vec4(r_exact, port::emcv_burley_sample_spvg(u, kBurleyD),
                                   port::emcv_burley_cdf(r_exact, kBurleyD), port::emcv_burley_pdf(r_exact, kBurleyD));
+        const float scale = std::ldexp(1.0f, -static_cast<int>(pixel % 32u));
+        const glm::vec3 slope =
+            port::emcv_resolve_guide_slope(scale * glm::vec3(cov.cov.z, cov.cov.x, res.variance),
+                                           scale * glm::vec3(cov.cov.y, -cov.cov.y, res.variance * cov.mean.x), 9.0f);
+        const glm::vec3 moved = port::emcv_resolve_guided_history(glm::vec3(cov.mean, res.mean), slope,
+                                                                  glm::vec3(last, q),
+                                                                  glm::vec3(cov.mean.y, cov.mean.x, res.variance));
+        out[base + 4] = glm::vec4(slope.x, slope.z, moved.x, moved.z);
     }
     return out;
 }
@@ -145,7 +156,8 @@ std::vector<glm::vec4> run_port_gpu() {
 
 const char* field_name(std::uint32_t f) {
     static const char* names[] = {"mean_f", "mean_G", "C_ff", "C_fG", "C_GG", "alpha", "res_mean", "res_var",
-                                  "n", "count", "rejected", "q", "burley_r", "burley_r_spvg", "burley_cdf", "burley_pdf"};
+                                  "n", "count", "rejected", "q", "burley_r", "burley_r_spvg", "burley_cdf", "burley_pdf",
+                                  "guide_slope_x", "guide_slope_z", "guided_x", "guided_z"};
     return names[f];
 }
 
@@ -161,18 +173,20 @@ TEST_CASE("port parity: double C++ templates, port on the CPU, port in an EGL co
     REQUIRE(debug.error_count() == 0);
 
     // (b) vs (c), element by element; report the first divergence and the worst distance per field.
-    std::int64_t worst[16] = {};
+    constexpr std::uint32_t kFields = kVec4s * 4;
+    std::int64_t worst[kFields] = {};
     std::string first;
     for (std::uint32_t pixel = 0; pixel < kPixels; ++pixel) {
-        for (std::uint32_t f = 0; f < 16; ++f) {
+        for (std::uint32_t f = 0; f < kFields; ++f) {
             const float b = cpu[pixel * kVec4s + f / 4][static_cast<int>(f % 4)];
             const float c = gpu[pixel * kVec4s + f / 4][static_cast<int>(f % 4)];
             const bool integer_field = f == 9 || f == 10;  // count, rejected: compared as bits
             const std::int64_t d = integer_field ? (bits(b) == bits(c) ? 0 : INT64_MAX) : ulp_distance(b, c);
             worst[f] = std::max(worst[f], d);
-            const std::int64_t bound = f >= 12 ? kBurleyUlp : 0;
+            const bool burley_field = f >= 12 && f < 16;  // the guide's fields after them: exact
+            const std::int64_t bound = burley_field ? kBurleyUlp : 0;
             const bool within_absolute =
-                f >= 12 && std::fabs(static_cast<double>(b) - static_cast<double>(c)) <= burley_absolute_bound(f);
+                burley_field && std::fabs(static_cast<double>(b) - static_cast<double>(c)) <= burley_absolute_bound(f);
             if (d > bound && !within_absolute && first.empty()) {
                 std::ostringstream m;
                 m.precision(9);
@@ -184,7 +198,7 @@ TEST_CASE("port parity: double C++ templates, port on the CPU, port in an EGL co
         }
     }
     std::ostringstream summary;
-    for (std::uint32_t f = 0; f < 16; ++f) summary << field_name(f) << " " << worst[f] << " ulp; ";
+    for (std::uint32_t f = 0; f < kFields; ++f) summary << field_name(f) << " " << worst[f] << " ulp; ";
     INFO("worst CPU/GPU distance per field: " << summary.str());
     INFO(first);
     CHECK(first.empty());

@@ -272,7 +272,8 @@ EMCV_FN vec3 emcv_resolve_guide_slope(EMCV_IN(vec3) guide_variance_sum, EMCV_IN(
 /// lights has guide == guide_history: the history is unchanged.
 EMCV_FN vec3 emcv_resolve_guided_history(EMCV_IN(vec3) history, EMCV_IN(vec3) slope, EMCV_IN(vec3) guide,
                                          EMCV_IN(vec3) guide_history) {
-    return history + slope * (guide - guide_history);
+    EMCV_PRECISE vec3 moved = history + slope * (guide - guide_history);  // no FMA: the same bits on CPU and GPU
+    return moved;
 }
 
 /// One resolve step: the clipped history blended with the current value, current weight `weight`.
