@@ -70,7 +70,7 @@ struct renderer::impl {
           res(make_gpu_resources(s, m, o.width, o.height)), planner(s, m, o.width, o.height, o.resolve, o.jitter), constants(s),
           light_scale(s.lights.size(), 1.0f), stamps(make_timestamps(o.timing_mode)) {
         make_history();
-        if (o.resolve == resolve_mode::taa) make_resolve_targets(res);
+        if (o.resolve == resolve_mode::taa) make_resolve_targets(res, !o.jitter);
         for (std::size_t id = 0; id < pass_id_count; ++id)
             slot_names.emplace_back(pass_base_name(static_cast<pass_id>(id)));
         for (std::size_t layer = 0; layer < res.shadow_lights.size(); ++layer)

@@ -241,10 +241,11 @@ void make_previous_gbuffer(gpu_resources& r) {
     r.prev_gb_material = make_cleared_target(GL_R8UI, r.width, r.height);  // 0 = background: every pixel fresh
 }
 
-void make_resolve_targets(gpu_resources& r) {
+void make_resolve_targets(gpu_resources& r, bool guide) {
     r.resolve_history = make_cleared_target(GL_RGBA32F, r.width, r.height);
     r.resolve_history_previous = make_cleared_target(GL_RGBA32F, r.width, r.height);  // depth 0: no history
     r.resolved_display = make_target(GL_RGBA8, r.width, r.height);
+    if (!guide) return;
     r.resolve_guide = make_cleared_target(GL_RGBA16F, r.width, r.height);
     r.resolve_guide_previous = make_cleared_target(GL_RGBA16F, r.width, r.height);
 }

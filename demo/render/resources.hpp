@@ -73,8 +73,8 @@ struct gpu_resources {
     /// would do on hardware that rounds, but llvmpipe's binary16 store truncates, and the history, stored 20 times
     /// over, walked a still pixel 2 steps off), and the resolved display image (RGBA8).
     gl::texture_2d resolve_history, resolve_history_previous, resolved_display;
-    /// The resolve's guide, this frame's written and the previous frame's read with the history (swapped with
-    /// it): the unscattered composite in display YCoCg (RGBA16F; the shader rounds each value to binary16 itself
+    /// The resolve's guide (without jitter; empty under it, where the resolve does not follow a guide), this
+    /// frame's written and the previous frame's read with the history (swapped with it): the unscattered composite in display YCoCg (RGBA16F; the shader rounds each value to binary16 itself
     /// before the store, so the store is exact under any rounding and a still guide reads back as it is computed).
     gl::texture_2d resolve_guide, resolve_guide_previous;
     gl::texture_2d shadow_maps;  ///< GL_TEXTURE_2D_ARRAY, one layer per light in shadow_lights
@@ -101,8 +101,9 @@ void swap_gbuffer(gpu_resources& r);
 /// Marks the previous frame's G-buffer unusable (material 0): the next frame keeps no history anywhere.
 void forget_previous_gbuffer(gpu_resources& r);
 
-/// Allocates the temporal resolve's targets (--resolve taa), its history empty.
-void make_resolve_targets(gpu_resources& r);
+/// Allocates the temporal resolve's targets (--resolve taa), its history empty; with `guide` (no jitter) its
+/// guide textures too.
+void make_resolve_targets(gpu_resources& r, bool guide);
 /// The resolve history just written becomes the previous one (no copy).
 void swap_resolve_history(gpu_resources& r);
 /// Empties the previous resolve history (view depth 0 everywhere): the next resolve starts from the raw frame.

@@ -66,23 +66,31 @@ def run_scene(build, scene, methods, size, budget, out, defines=()):
     return rows, change
 
 
-def table(scene, rows, change, methods):
+def summary(rows, change, method):
+    """One method's (raw before, resolved before, raw after, resolved after, lag): the means over frames
+    SETTLED_FROM up to the first light change `change` (every frame from SETTLED_FROM on without one) and over
+    the WINDOW frames from it, None where a span is empty; the lag None without a change."""
     frames = sorted({int(r["frame"]) for r in rows})
     before = [f for f in frames if f >= SETTLED_FROM and (change is None or f < change)]
     after = [f for f in frames if change is not None and change <= f < change + WINDOW]
+    own = {int(r["frame"]): r for r in rows if r["method"] == method}
+    raw = {f: number(own[f]["psnr_db"]) for f in own}
+    resolved = {f: number(own[f]["psnr_resolved_db"]) for f in own}
+    return (mean([raw.get(f) for f in before]), mean([resolved.get(f) for f in before]),
+            mean([raw.get(f) for f in after]), mean([resolved.get(f) for f in after]),
+            lag(resolved, change) if change is not None else None)
+
+
+def table(scene, rows, change, methods):
     lines = ["scene `%s`%s" % (scene, "" if change is None else ", light change at frame %d" % change), "",
              "| method | raw PSNR before | resolved before | gain | raw after | resolved after | gain | lag (frames) |",
              "|---|---|---|---|---|---|---|---|"]
     for m in methods:
-        own = {int(r["frame"]): r for r in rows if r["method"] == m}
-        raw = {f: number(own[f]["psnr_db"]) for f in own}
-        res = {f: number(own[f]["psnr_resolved_db"]) for f in own}
+        raw_before, resolved_before, raw_after, resolved_after, k = summary(rows, change, m)
         cells = []
-        for span in (before, after):
-            a, b = mean([raw.get(f) for f in span]), mean([res.get(f) for f in span])
+        for a, b in ((raw_before, resolved_before), (raw_after, resolved_after)):
             cells += ["-" if a is None else "%.2f" % a, "-" if b is None else "%.2f" % b,
                       "-" if a is None or b is None else "%+.2f" % (b - a)]
-        k = lag(res, change) if change is not None else None
         lines.append("| %s | %s | %s |" % (m, " | ".join(cells), "-" if k is None else str(k)))
     return "\n".join(lines)
 

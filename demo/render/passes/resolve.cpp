@@ -25,8 +25,11 @@ void resolve(const frame_context& c) {
     glBindTextureUnit(EMCV_RENDER_TEX_RESOLVE_HISTORY, r.resolve_history_previous.id());
     glBindImageTexture(EMCV_RENDER_IMG_RESOLVE_HISTORY, r.resolve_history.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glBindImageTexture(EMCV_RENDER_IMG_RESOLVED, r.resolved_display.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
-    glBindTextureUnit(EMCV_RENDER_TEX_RESOLVE_GUIDE, r.resolve_guide_previous.id());
-    glBindImageTexture(EMCV_RENDER_IMG_RESOLVE_GUIDE, r.resolve_guide.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    if (r.resolve_guide.id() != 0) {  // without jitter (make_resolve_targets): the shader's guided()
+        glBindTextureUnit(EMCV_RENDER_TEX_RESOLVE_GUIDE, r.resolve_guide_previous.id());
+        glBindImageTexture(EMCV_RENDER_IMG_RESOLVE_GUIDE, r.resolve_guide.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                           GL_RGBA16F);
+    }
     glDispatchCompute(c.groups_x, c.groups_y, 1);
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
 }
