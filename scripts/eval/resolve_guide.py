@@ -8,7 +8,9 @@ emcv_resolve_guided_history): the guide is the unscattered diffuse light times t
 slope of the current values on the guide over the pixel's 3x3 neighbourhood (emcv_resolve_guide_slope). The same
 binary runs with the guide (as built) and without it (`--define EMCV_RESOLVE_GUIDE=0`). Two tables:
 
-  effect  resolve_table.py's columns for both (PSNR of the whole frame, mean over frames 20 up to the scene's
+  effect  resolve_table.py's columns for both, and for the guide without the weight its change asks of the blend
+          (emcv_resolve_guide_weight; a copy of this tree's shaders with that one line taken out, read through
+          EMCV_SHADER_DIR: the script refuses when the line is no longer in the shader) (PSNR of the whole frame, mean over frames 20 up to the scene's
           first light change, "before", and over the 30 frames from it, "after"; lag: frames after the change
           until the resolved PSNR stays within 1 dB of its settled value), 96x96, the adaptive methods at a budget
           of 8, on the scenes of docs/frame.md's resolve table: still cameras (`static`, light-off, the burst, the
@@ -33,12 +35,15 @@ import subprocess
 import sys
 import tempfile
 
+from adaptive_overhead import make_variant
 from resolve_table import run_scene, summary
 from run_eval import git_commit, replace_block, write_atomically
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 DOC = os.path.join(ROOT, "docs", "frame.md")
 NO_GUIDE = "EMCV_RESOLVE_GUIDE=0"
+# The guide without its weight: the line that takes up this frame at emcv_resolve_guide_weight, taken out.
+NO_GUIDE_WEIGHT = [("render/resolve.comp.glsl", "        if (noise_box) weight = max(weight, guide_weight);\n", "")]
 SCENES = ["static", "light-off", "demo/scenes/variations/burst-3.json", "demo/scenes/variations/fade.json",
           "demo/scenes/validation/skin-close.json", "demo/scenes/validation/mixed-off.json", "moving",
           "demo/scenes/variations/camera-switch.json", "demo/scenes/validation/skin-orbit.json"]
@@ -55,24 +60,29 @@ def cell(value, digits=2, sign=False):
 
 
 def effect_table(build, tmp):
-    lines = ["| scene | method | raw before | resolved before: no guide | guide | gain | raw after | "
-             "resolved after: no guide | guide | gain | lag: no guide | guide |",
-             "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    lines = ["| scene | method | raw before | resolved before: no guide | guide, no weight | guide | gain | raw after | "
+             "resolved after: no guide | guide, no weight | guide | gain | lag: no guide | guide |",
+             "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    unweighted_dir = make_variant(os.path.join(tmp, "no-guide-weight"), NO_GUIDE_WEIGHT)
     for scene in SCENES:
         name = os.path.splitext(os.path.basename(scene))[0]
         guided, change = run_scene(build, scene, METHODS, "96x96", BUDGET, os.path.join(tmp, f"guide-{name}"))
         unguided, change_unguided = run_scene(build, scene, METHODS, "96x96", BUDGET,
                                               os.path.join(tmp, f"no-guide-{name}"), [NO_GUIDE])
-        if change != change_unguided:
-            sys.exit(f"resolve_guide.py: {scene}: the light change moved with the guide ({change_unguided} -> {change})")
+        unweighted, change_unweighted = run_scene(build, scene, METHODS, "96x96", BUDGET,
+                                                  os.path.join(tmp, f"no-weight-{name}"), shader_dir=unweighted_dir)
+        if not change == change_unguided == change_unweighted:
+            sys.exit(f"resolve_guide.py: {scene}: the light change moved with the guide "
+                     f"({change_unguided}, {change_unweighted} -> {change})")
         for m in METHODS:
-            if not any(r["method"] == m for r in guided + unguided):
+            if not any(r["method"] == m for r in guided + unguided + unweighted):
                 sys.exit(f"resolve_guide.py: no rows of {m} on {scene}")
-            g, u = summary(guided, change, m), summary(unguided, change, m)
+            g, u, w = summary(guided, change, m), summary(unguided, change, m), summary(unweighted, change, m)
             gain_before = None if g[1] is None or u[1] is None else g[1] - u[1]
             gain_after = None if g[3] is None or u[3] is None else g[3] - u[3]
-            lines.append("| " + " | ".join([name, m, cell(g[0]), cell(u[1]), cell(g[1]), cell(gain_before, sign=True),
-                                            cell(g[2]), cell(u[3]), cell(g[3]), cell(gain_after, sign=True),
+            lines.append("| " + " | ".join([name, m, cell(g[0]), cell(u[1]), cell(w[1]), cell(g[1]),
+                                            cell(gain_before, sign=True), cell(g[2]), cell(u[3]), cell(w[3]),
+                                            cell(g[3]), cell(gain_after, sign=True),
                                             "-" if u[4] is None else str(u[4]),
                                             "-" if g[4] is None else str(g[4])]) + " |")
             print(lines[-1], flush=True)
@@ -123,7 +133,8 @@ def main():
         cost = cost_table(a.build, tmp)
     command = "`/usr/bin/python3 scripts/eval/resolve_guide.py --write-doc`"
     effect_body = "\n".join([f"Regenerated by {command}, {made}. PSNR (dB, whole frame), 96x96, the adaptive methods "
-                             f"at a budget of {BUDGET}; gain: with the guide less without.", "", effect])
+                             f"at a budget of {BUDGET}; guide, no weight: the guide without the weight its change asks of the "
+                             "blend (emcv_resolve_guide_weight); gain: with the guide as built less without.", "", effect])
     cost_body = "\n".join([f"Regenerated by {command}, {made}. Wall clock on llvmpipe (work, not GPU time), "
                            f"burley-{BUDGET} at 256x256, median over frames 4-29, the median of {COST_ROUNDS} "
                            "alternating rounds.", "", cost])

@@ -163,7 +163,10 @@ void main() {
     // history's own value (here the history stands in for last frame's guide), at the slope of a one-pixel fit
     // (no spread: 0, the history as it is).
     const vec3 guide = emcv_rgb_to_ycocg(emcv_display_encode(albedo * scattered, int(frame_index & 1u)));
+    const vec3 guide_history = history;
     history = emcv_resolve_guided_history(history, emcv_resolve_guide_slope(vec3(0.0f), vec3(0.0f), 1.0f), guide, history);
+    // The weight the guide's change asks of the blend (no spread in one value: 0).
+    const float guide_weight = emcv_resolve_guide_weight(guide - guide_history, vec3(0.0f), 1.0f);
     vec3 lo, hi;
     emcv_resolve_clip_box(shown, shown * shown, 1.0f, shown, lo, hi);
     // The noise box (resolve.h): this pixel's own variance as its neighbourhood's (one pixel here), its deviation
@@ -182,8 +185,9 @@ void main() {
     const vec3 target = emcv_resolve_clip(detailed, shown, lo, hi);
     if (emcv_resolve_same_surface(previous.a, frame.camera.w))
         history = emcv_resolve_blend(emcv_resolve_clip(history, target, lo, hi), shown,
-                                     noise_variance >= 0.0f ? max(emcv_resolve_current_weight(history, shown, noise_extent),
-                                                                  emcv_resolve_shift_weight(shown - history, noise_extent, 1.0f))
+                                     noise_variance >= 0.0f ? max(max(emcv_resolve_current_weight(history, shown, noise_extent),
+                                                                      emcv_resolve_shift_weight(shown - history, noise_extent, 1.0f)),
+                                                                  guide_weight)
                                                             : EMCV_RESOLVE_BLEND);
     else
         history = shown;

@@ -17,7 +17,8 @@
 // is first moved by the change of a noise-free guide (the unscattered diffuse light times the albedo), resampled
 // exactly as the history was, as far as the pixel's neighbourhood follows the guide's detail
 // (emcv_resolve_guided_history): what resampling and a changing light did to the history, the guide shows
-// without noise. The history keeps the resolved value and the pixel's view depth (0 for the background, which is
+// without noise; where the guide changed by much of its 3x3 spread, the slope's noise makes that move uncertain,
+// and the blend takes up this frame at the weight that uncertainty asks (emcv_resolve_guide_weight). The history keeps the resolved value and the pixel's view depth (0 for the background, which is
 // never blended: it does not change), the guide texture this frame's guide.
 #version 450 core
 
@@ -151,8 +152,9 @@ vec3 guide_part(ivec2 q, vec3 resolved) {
     return vec3(unpackHalf2x16(packHalf2x16(guide.xy)), unpackHalf2x16(packHalf2x16(vec2(guide.z, 0.0f))).x);
 }
 
-/// The guide slope at the tile position `local` (emcv_resolve_guide_slope) over its 3x3 neighbourhood.
-vec3 guide_slope(ivec2 local) {
+/// The guide slope at the tile position `local` (emcv_resolve_guide_slope) over its 3x3 neighbourhood, and the
+/// guide's centred sum of squares there (`guide_variance_sum`, for emcv_resolve_guide_weight).
+vec3 guide_slope(ivec2 local, out vec3 guide_variance_sum) {
     vec3 guide_mean = vec3(0.0f), value_mean = vec3(0.0f);
     for (int dy = -1; dy <= 1; ++dy) {
         for (int dx = -1; dx <= 1; ++dx) {
@@ -163,7 +165,8 @@ vec3 guide_slope(ivec2 local) {
     }
     guide_mean /= 9.0f;
     value_mean /= 9.0f;
-    vec3 guide_variance_sum = vec3(0.0f), covariance_sum = vec3(0.0f);
+    vec3 covariance_sum = vec3(0.0f);
+    guide_variance_sum = vec3(0.0f);
     for (int dy = -1; dy <= 1; ++dy) {
         for (int dx = -1; dx <= 1; ++dx) {
             uint i = uint((local.x + dx) + (local.y + dy) * APRON_SIDE);
@@ -278,9 +281,15 @@ void main() {
     if ((depth > 0.0f || jitters()) &&
         reprojected_history(p, depth, local, history, history_variance, history_mean, history_mean_known,
                             guide_history)) {
-        if (guided())
-            history = emcv_resolve_guided_history(history, guide_slope(local), tile_guide[local.x + local.y * APRON_SIDE],
-                                                  guide_history);
+        // The history moved by the guide's change, and the weight that change's uncertainty asks of the blend
+        // (emcv_resolve_guide_weight; 0 where the guide did not change).
+        float guide_weight = 0.0f;
+        if (guided()) {
+            vec3 guide = tile_guide[local.x + local.y * APRON_SIDE], guide_variance_sum;
+            vec3 slope = guide_slope(local, guide_variance_sum);
+            history = emcv_resolve_guided_history(history, slope, guide, guide_history);
+            guide_weight = emcv_resolve_guide_weight(guide - guide_history, guide_variance_sum, 9.0f);
+        }
         vec3 sum = vec3(0.0f), sum_squares = vec3(0.0f), filtered = vec3(0.0f);
         for (int dy = -1; dy <= 1; ++dy) {
             for (int dx = -1; dx <= 1; ++dx) {
@@ -314,6 +323,8 @@ void main() {
         float weight = noise_box ? emcv_resolve_current_weight(history, current, extent) : float(EMCV_RESOLVE_BLEND);
         if (noise_box && history_mean_known)
             weight = max(weight, emcv_resolve_shift_weight(sum / 9.0f - history_mean, extent, 9.0f));
+        // So is a history the guide moved by as much as the guide's own spread (emcv_resolve_guide_weight).
+        if (noise_box) weight = max(weight, guide_weight);
         resolved = emcv_resolve_blend(emcv_resolve_clip(history, target, lo, hi), current, weight);
     }
     imageStore(history_out, p, vec4(resolved, depth));

@@ -57,4 +57,12 @@ void main() {
     vec3 moved = emcv_resolve_guided_history(vec3(cov.mean, res.mean), slope, vec3(last, q),
                                              vec3(cov.mean.y, cov.mean.x, res.variance));
     results[base + 4u] = vec4(slope.x, slope.z, moved.x, moved.z);
+    // The weight the guide's change asks of the blend (resolve.h), on the same sums and change, over n = 1, 9 and
+    // 81 values and at half the change (exact).
+    vec3 guide_sums = scale * vec3(cov.cov.z, cov.cov.x, res.variance);
+    vec3 change = vec3(last, q) - vec3(cov.mean.y, cov.mean.x, res.variance);
+    results[base + 5u] = vec4(emcv_resolve_guide_weight(change, guide_sums, 1.0f),
+                              emcv_resolve_guide_weight(change, guide_sums, 9.0f),
+                              emcv_resolve_guide_weight(change, guide_sums, 81.0f),
+                              emcv_resolve_guide_weight(0.5f * change, guide_sums, 9.0f));
 }

@@ -125,6 +125,12 @@ std::vector<glm::vec4> run_port_cpu() {
                                                                   glm::vec3(last, q),
                                                                   glm::vec3(cov.mean.y, cov.mean.x, res.variance));
         out[base + 4] = glm::vec4(slope.x, slope.z, moved.x, moved.z);
+        const glm::vec3 guide_sums = scale * glm::vec3(cov.cov.z, cov.cov.x, res.variance);
+        const glm::vec3 change = glm::vec3(last, q) - glm::vec3(cov.mean.y, cov.mean.x, res.variance);
+        out[base + 5] = glm::vec4(port::emcv_resolve_guide_weight(change, guide_sums, 1.0f),
+                                  port::emcv_resolve_guide_weight(change, guide_sums, 9.0f),
+                                  port::emcv_resolve_guide_weight(change, guide_sums, 81.0f),
+                                  port::emcv_resolve_guide_weight(0.5f * change, guide_sums, 9.0f));
     }
     return out;
 }
@@ -157,7 +163,8 @@ std::vector<glm::vec4> run_port_gpu() {
 const char* field_name(std::uint32_t f) {
     static const char* names[] = {"mean_f", "mean_G", "C_ff", "C_fG", "C_GG", "alpha", "res_mean", "res_var",
                                   "n", "count", "rejected", "q", "burley_r", "burley_r_spvg", "burley_cdf", "burley_pdf",
-                                  "guide_slope_x", "guide_slope_z", "guided_x", "guided_z"};
+                                  "guide_slope_x", "guide_slope_z", "guided_x", "guided_z", "guide_weight_n1",
+                                  "guide_weight_n9", "guide_weight_n81", "guide_weight_half"};
     return names[f];
 }
 

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
-// The temporal resolve's guide (include/emcv/port/resolve.h, emcv_resolve_guide_slope and
+// The temporal resolve's guide (include/emcv/port/resolve.h, emcv_resolve_guide_slope, emcv_resolve_guide_weight and
 // emcv_resolve_guided_history) on the CPU: the slope is the local linear model's least-squares slope, not biased
 // by noise in the values and clamped to [0, 1]; and a history of a signal that follows the guide is moved back
-// onto this frame's value by the guide's change, whatever its resampling did.
+// onto this frame's value by the guide's change, whatever its resampling did; the weight that change asks of the blend
+// is the least-error weight for the moved history's uncertainty.
 #include <catch2/catch_test_macros.hpp>
 
 #include <array>
@@ -145,4 +146,75 @@ TEST_CASE("resolve guided history: a signal that follows the guide is moved back
         }
         CHECK(port::emcv_resolve_guided_history(history, b, guide_history, guide_history) == history);
     }
+}
+
+TEST_CASE("resolve guide weight: the moved history is off by as much as the slope's noise times the guide's change, "
+          "and the weight is the one that mixes it with this frame at the least error") {
+    // v = a + b g + e as above (b = 0.5, e normal, standard deviation sigma, in one channel c), the slope b_hat
+    // fitted on it, and the history moved by b_hat d for a guide change d: if the history was right before the
+    // change it is off by (b_hat - b) d, normal with mean 0 and variance sigma^2 d^2 / S. Over N = 4000
+    // neighbourhoods (fixed seed) its mean square is within 5 standard errors (sqrt(2 / N), relative) of that.
+    // Mixed with this frame's centre value (truth + e_4, independent of b_hat in channels 0 and 2, where the
+    // centre's guide is the neighbourhood's mean) at weight w, the expected squared error is
+    // (1 - w)^2 sigma^2 x + w^2 sigma^2 with x = d^2 / S: least at w = x / (x + 1), which the weight must be, and
+    // the empirical error there is below its value 0.15 either side (the difference, (x + 1) sigma^2 0.15^2, is
+    // at least 2% of sigma^2 for the x here; both errors come from the same draws).
+    const std::array<glm::vec3, 9> g = detailed_guide();
+    const centred_sums clean = sums_of(g, g);
+    const float b = 0.5f;
+    const int n = 4000;
+    std::mt19937 rng(20261207u);
+    for (int c = 0; c < 3; ++c) {
+        for (double x : {0.25, 1.0, 4.0}) {
+            INFO("channel " << c << ", x " << x);
+            const double S = clean.guide_variance[c];
+            const double sigma = 0.05 * std::sqrt(S);
+            glm::vec3 change(0.0f);
+            change[c] = float(std::sqrt(x * S));
+            const float weight = port::emcv_resolve_guide_weight(change, clean.guide_variance, 9.0f);
+            CHECK(std::fabs(double(weight) - x / (x + 1.0)) < 1e-5);
+            std::normal_distribution<double> noise(0.0, sigma);
+            double history_squares = 0.0, mixed[3] = {0.0, 0.0, 0.0};
+            const double weights[3] = {double(weight) - 0.15, double(weight), double(weight) + 0.15};
+            for (int k = 0; k < n; ++k) {
+                std::array<glm::vec3, 9> v{};
+                std::array<double, 9> e{};
+                for (std::size_t i = 0; i < 9; ++i) {
+                    e[i] = noise(rng);
+                    v[i] = 0.2f + b * g[i];
+                    v[i][c] += float(e[i]);
+                }
+                const centred_sums s = sums_of(g, v);
+                const double slope = port::emcv_resolve_guide_slope(s.guide_variance, s.covariance, 9.0f)[c];
+                const double history_error = (slope - b) * double(change[c]);
+                history_squares += history_error * history_error;
+                for (int j = 0; j < 3; ++j) {
+                    const double error = (1.0 - weights[j]) * history_error + weights[j] * e[4];
+                    mixed[j] += error * error;
+                }
+            }
+            const double expected = sigma * sigma * x;
+            CHECK(std::fabs(history_squares / n / expected - 1.0) < 5.0 * std::sqrt(2.0 / n));
+            if (c != 1) {  // channel 1's centre is off its neighbourhood's mean: e_4 enters b_hat there
+                CHECK(mixed[1] < mixed[0]);
+                CHECK(mixed[1] < mixed[2]);
+            }
+        }
+    }
+}
+
+TEST_CASE("resolve guide weight: 0 for a still guide and where the guide shows no detail; the largest channel's") {
+    const std::array<glm::vec3, 9> g = detailed_guide();
+    const centred_sums clean = sums_of(g, g);
+    // A still camera under still lights: no change, the blend's weight stays.
+    CHECK(port::emcv_resolve_guide_weight(glm::vec3(0.0f), clean.guide_variance, 9.0f) == 0.0f);
+    // A flat guide (each channel's spread under the half-step floor) changed by a whole step: nothing was fitted,
+    // so nothing is uncertain (the history was not moved).
+    const glm::vec3 flat_sums(9.0f * (0.25f / 255.0f) * (0.25f / 255.0f));
+    CHECK(port::emcv_resolve_guide_weight(glm::vec3(1.0f / 255.0f), flat_sums, 9.0f) == 0.0f);
+    // The channels' weights d^2 / (d^2 + S): the largest is returned, whichever channel holds it.
+    const glm::vec3 sums(0.01f, 0.04f, 0.09f);
+    CHECK(std::fabs(port::emcv_resolve_guide_weight(glm::vec3(0.1f, 0.1f, 0.1f), sums, 9.0f) - 0.5f) < 1e-6f);
+    CHECK(std::fabs(port::emcv_resolve_guide_weight(glm::vec3(0.0f, 0.0f, 0.3f), sums, 9.0f) - 0.5f) < 1e-6f);
+    CHECK(std::fabs(port::emcv_resolve_guide_weight(glm::vec3(0.0f, 0.2f, 0.0f), sums, 9.0f) - 0.5f) < 1e-6f);
 }

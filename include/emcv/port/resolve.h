@@ -4,7 +4,7 @@
 /// engines resolve a stochastic SSS before display: the history, reprojected with the motion vectors, is clipped
 /// to the current frame's 3x3 neighbourhood in YCoCg (variance clipping) and blended exponentially with the
 /// current pixel (at a higher weight where the history, or its neighbourhood's mean, lay beyond this frame's
-/// noise). The demo's `resolve`
+/// noise, or where the guide that moved the history changed by much of its spread). The demo's `resolve`
 /// pass (shaders/render/resolve.comp.glsl) runs it; docs/frame.md,
 /// "Temporal resolve", states the choices and their sources.
 //
@@ -199,8 +199,8 @@ EMCV_FN vec4 emcv_resolve_catmull_rom(float t) {
 
 /// The current value's weight that minimises the error of mixing it (unbiased, variance sigma^2) with a history
 /// off by b: at weight w the expected squared error is (1 - w)^2 b^2 + w^2 sigma^2, least at b^2 / (b^2 + sigma^2).
-/// `bias_squared` is b^2 in units of sigma^2. emcv_resolve_current_weight and emcv_resolve_shift_weight estimate b
-/// two ways.
+/// `bias_squared` is b^2 in units of sigma^2. emcv_resolve_current_weight, emcv_resolve_shift_weight and
+/// emcv_resolve_guide_weight estimate b three ways.
 EMCV_FN float emcv_resolve_least_error_weight(float bias_squared) {
     return bias_squared / (bias_squared + 1.0f);
 }
@@ -246,6 +246,14 @@ EMCV_FN float emcv_resolve_shift_weight(EMCV_IN(vec3) mean_difference, EMCV_IN(v
     return z2 > k2 ? emcv_resolve_least_error_weight((z2 - 1.0f) / n) : 0.0f;
 }
 
+/// Whether a guide channel shows detail to regress on over n values whose centred sum of squares is
+/// `guide_variance_sum`: its standard deviation is at least half an 8-bit display step (the clip box's floor,
+/// emcv_resolve_clip). Below that the slope (emcv_resolve_guide_slope) and its uncertainty
+/// (emcv_resolve_guide_weight) are 0: the guide's spread there is its own rounding.
+EMCV_FN bool emcv_resolve_guide_shows_detail(float guide_variance_sum, float n) {
+    return guide_variance_sum > n * (0.5f / 255.0f) * (0.5f / 255.0f);
+}
+
 /// The guide slope per channel: how much of the guide's detail the resolved values follow around a pixel, the
 /// least-squares slope b of the local linear model value = a + b guide over its 3x3 neighbourhood (the guided
 /// filter's model, He et al. 2010), from the neighbourhood's centred sums: `guide_variance_sum` = sum of
@@ -256,10 +264,32 @@ EMCV_FN float emcv_resolve_shift_weight(EMCV_IN(vec3) mean_difference, EMCV_IN(v
 /// emcv_resolve_clip), the guide shows no detail to regress on and the slope is 0.
 EMCV_FN vec3 emcv_resolve_guide_slope(EMCV_IN(vec3) guide_variance_sum, EMCV_IN(vec3) covariance_sum, float n) {
     vec3 slope = vec3(0.0f);
-    float floor_variance = n * (0.5f / 255.0f) * (0.5f / 255.0f);
     for (int c = 0; c < 3; ++c)
-        if (guide_variance_sum[c] > floor_variance) slope[c] = clamp(covariance_sum[c] / guide_variance_sum[c], 0.0f, 1.0f);
+        if (emcv_resolve_guide_shows_detail(guide_variance_sum[c], n))
+            slope[c] = clamp(covariance_sum[c] / guide_variance_sum[c], 0.0f, 1.0f);
     return slope;
+}
+
+/// The current value's weight where the guide's correction of the history is uncertain: the largest over the
+/// channels whose guide shows detail (emcv_resolve_guide_shows_detail) of emcv_resolve_least_error_weight(d^2 /
+/// S), where d is the guide's change at the pixel (`guide_change`: guide - guide_history, what
+/// emcv_resolve_guided_history moves the history by, times the slope) and S the guide's centred sum of squares
+/// over the n values the slope was fitted on (`guide_variance_sum`); 0 elsewhere. The least-squares slope of
+/// values with noise of variance sigma^2 about the local linear model has variance sigma^2 / S (fixed
+/// regressors: the guide has no noise), so the moved history is off by (b_hat - b) d, of expected square
+/// sigma^2 d^2 / S: d^2 / S in units of this frame's noise sigma^2, whatever sigma is. A still guide (d = 0)
+/// leaves the blend's weight as it is; a guide that changed by as much as its neighbourhood's spread (an edge
+/// that resampling moved, a light that went out) says the history it moved is as uncertain as this frame. No
+/// constant but n's floor.
+EMCV_FN float emcv_resolve_guide_weight(EMCV_IN(vec3) guide_change, EMCV_IN(vec3) guide_variance_sum, float n) {
+    float weight = 0.0f;
+    for (int c = 0; c < 3; ++c) {
+        if (emcv_resolve_guide_shows_detail(guide_variance_sum[c], n)) {
+            float d2 = guide_change[c] * guide_change[c];
+            weight = max(weight, emcv_resolve_least_error_weight(d2 / guide_variance_sum[c]));
+        }
+    }
+    return weight;
 }
 
 /// The reprojected history moved by the change of a noise-free guide: history + slope (guide - guide_history),
