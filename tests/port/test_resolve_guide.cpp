@@ -45,6 +45,20 @@ std::array<glm::vec3, 9> detailed_guide() {
     return g;
 }
 
+/// The slope emcv_resolve_guide_slope fits in channel c on one neighbourhood of values 0.2 + b g with a normal
+/// noise added in that channel (its nine draws in `e`).
+double noisy_slope(const std::array<glm::vec3, 9>& g, float b, int c, std::normal_distribution<double>& noise,
+                   std::mt19937& rng, std::array<double, 9>& e) {
+    std::array<glm::vec3, 9> v{};
+    for (std::size_t i = 0; i < 9; ++i) {
+        e[i] = noise(rng);
+        v[i] = 0.2f + b * g[i];
+        v[i][c] += float(e[i]);
+    }
+    const centred_sums s = sums_of(g, v);
+    return port::emcv_resolve_guide_slope(s.guide_variance, s.covariance, 9.0f)[c];
+}
+
 }  // namespace
 
 TEST_CASE("resolve guide slope: values that are an affine function of the guide give its slope, clamped to [0, 1]") {
@@ -100,14 +114,9 @@ TEST_CASE("resolve guide slope: this frame's noise in the values does not bias i
         const double spread = 0.05, sigma = spread * std::sqrt(double(clean.guide_variance[c]));
         std::normal_distribution<double> noise(0.0, sigma);
         double sum = 0.0, sum_squares = 0.0;
+        std::array<double, 9> e{};
         for (int k = 0; k < n; ++k) {
-            std::array<glm::vec3, 9> v{};
-            for (std::size_t i = 0; i < 9; ++i) {
-                v[i] = 0.2f + b * g[i];
-                v[i][c] += float(noise(rng));
-            }
-            const centred_sums s = sums_of(g, v);
-            const double slope = port::emcv_resolve_guide_slope(s.guide_variance, s.covariance, 9.0f)[c];
+            const double slope = noisy_slope(g, b, c, noise, rng, e);
             sum += slope;
             sum_squares += slope * slope;
         }
@@ -177,15 +186,8 @@ TEST_CASE("resolve guide weight: the moved history is off by as much as the slop
             double history_squares = 0.0, mixed[3] = {0.0, 0.0, 0.0};
             const double weights[3] = {double(weight) - 0.15, double(weight), double(weight) + 0.15};
             for (int k = 0; k < n; ++k) {
-                std::array<glm::vec3, 9> v{};
                 std::array<double, 9> e{};
-                for (std::size_t i = 0; i < 9; ++i) {
-                    e[i] = noise(rng);
-                    v[i] = 0.2f + b * g[i];
-                    v[i][c] += float(e[i]);
-                }
-                const centred_sums s = sums_of(g, v);
-                const double slope = port::emcv_resolve_guide_slope(s.guide_variance, s.covariance, 9.0f)[c];
+                const double slope = noisy_slope(g, b, c, noise, rng, e);
                 const double history_error = (slope - b) * double(change[c]);
                 history_squares += history_error * history_error;
                 for (int j = 0; j < 3; ++j) {
