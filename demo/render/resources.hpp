@@ -74,8 +74,9 @@ struct gpu_resources {
     /// over, walked a still pixel 2 steps off), and the resolved display image (RGBA8).
     gl::texture_2d resolve_history, resolve_history_previous, resolved_display;
     /// The resolve's guide (without jitter; empty under it, where the resolve does not follow a guide), this
-    /// frame's written and the previous frame's read with the history (swapped with it): the unscattered composite in display YCoCg (RGBA16F; the shader rounds each value to binary16 itself
-    /// before the store, so the store is exact under any rounding and a still guide reads back as it is computed).
+    /// frame's written and the previous frame's read with the history (swapped with it): the unscattered
+    /// composite in display YCoCg (RGBA16F; the shader rounds each value to binary16 itself before the store, so
+    /// the store is exact under any rounding and a still guide reads back as it is computed).
     gl::texture_2d resolve_guide, resolve_guide_previous;
     gl::texture_2d shadow_maps;  ///< GL_TEXTURE_2D_ARRAY, one layer per light in shadow_lights
     std::vector<gl::framebuffer> shadow_fbos;

@@ -18,8 +18,9 @@
 // exactly as the history was, as far as the pixel's neighbourhood follows the guide's detail
 // (emcv_resolve_guided_history): what resampling and a changing light did to the history, the guide shows
 // without noise; where the guide changed by much of its 3x3 spread, the slope's noise makes that move uncertain,
-// and the blend takes up this frame at the weight that uncertainty asks (emcv_resolve_guide_weight). The history keeps the resolved value and the pixel's view depth (0 for the background, which is
-// never blended: it does not change), the guide texture this frame's guide.
+// and the blend takes up this frame at the weight that uncertainty asks (emcv_resolve_guide_weight). The history
+// keeps the resolved value and the pixel's view depth (0 for the background, which is never blended: it does not
+// change), the guide texture this frame's guide.
 #version 450 core
 
 #include "emcv/port/resolve.h"
