@@ -47,7 +47,7 @@ void list_methods(std::ostream& out) {
 }
 
 void print_passes(std::ostream& out, const scene& s, const std::vector<method>& methods, int frames, int width,
-                  int height, resolve_mode resolve) {
+                  int height, resolve_mode resolve, const sampling_mode& sampling) {
     // The renderer's own planner, frame after frame as the renderer plans them (the reference's reuse
     // included): what is printed is what runs.
     const auto names = [&](const std::vector<planned_pass>& plan) {
@@ -57,7 +57,7 @@ void print_passes(std::ostream& out, const scene& s, const std::vector<method>& 
     };
     for (const method& m : methods) {
         out << "method " << m.name() << ":\n";
-        frame_planner planner(s, m, width, height, resolve);
+        frame_planner planner(s, m, width, height, resolve, sampling);
         std::vector<std::string> current = names(planner.plan(0));
         int first = 0;
         for (int frame = 1; frame < frames; ++frame) {

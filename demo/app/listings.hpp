@@ -22,6 +22,6 @@ void list_methods(std::ostream& out);
 /// For each method: "method M:" then one line per run of frames with the same pass list,
 /// "  frames A-B: pass, pass, ...", with the temporal resolve as `resolve` asks.
 void print_passes(std::ostream& out, const scene& s, const std::vector<method>& methods, int frames, int width,
-                  int height, resolve_mode resolve);
+                  int height, resolve_mode resolve, const sampling_mode& sampling);
 
 }  // namespace emcv::demo::app

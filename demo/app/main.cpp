@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
     }
     const int frames = o.frames.value_or(std::max(1, s.frames));
     if (o.print_passes) {
-        print_passes(std::cout, s, o.methods, frames, o.width, o.height, o.resolve);
+        print_passes(std::cout, s, o.methods, frames, o.width, o.height, o.resolve, sampling_mode_of(o.defines));
         return 0;
     }
 

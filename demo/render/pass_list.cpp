@@ -39,8 +39,9 @@ std::vector<std::size_t> shadow_casters(const scene& s) {
     return out;
 }
 
-frame_planner::frame_planner(const scene& s, const method& m, int width, int height, resolve_mode resolve, bool jitter)
-    : s_(&s), m_(m), width_(width), height_(height), resolve_(resolve),
+frame_planner::frame_planner(const scene& s, const method& m, int width, int height, resolve_mode resolve,
+                             const sampling_mode& sampling, bool jitter)
+    : s_(&s), m_(m), width_(width), height_(height), resolve_(resolve), budget_(sampling.budget),
       jitter_(jitter && resolve == resolve_mode::taa && m.type != method::kind::reference), casters_(shadow_casters(s)) {
     for (const object& o : s.objects)
         if (s.materials.at(static_cast<std::size_t>(o.material)).scatters()) sss_bounds_.push_back(object_bounds(s, o));
@@ -90,9 +91,10 @@ const std::vector<planned_pass>& frame_planner::plan(int frame, const std::vecto
                 passes_.push_back({pass_id::sss_separable_v, 0, 0});
                 break;
             case sss_passes::adaptive:
-                // One pass more than burley's: the samples pass (its last workgroup solves a budget's scale),
-                // then the method's own burley program, which also updates the history.
-                passes_.push_back({pass_id::sss_adaptive_samples, 0, 0});
+                // The method's own burley program, which also updates the history (and under a quality target
+                // first plans N over its tile); a budget records one pass more before it: the samples pass,
+                // whose last workgroup solves the frame's scale from every pixel's variance.
+                if (budget_) passes_.push_back({pass_id::sss_adaptive_samples, 0, 0});
                 passes_.push_back({pass_id::sss_burley, 0, 0});
                 break;
         }
@@ -104,8 +106,8 @@ const std::vector<planned_pass>& frame_planner::plan(int frame, const std::vecto
 }
 
 std::vector<std::string> pass_list(const scene& s, const method& m, int frame, int width, int height,
-                                   resolve_mode resolve) {
-    frame_planner planner(s, m, width, height, resolve);
+                                   resolve_mode resolve, const sampling_mode& sampling) {
+    frame_planner planner(s, m, width, height, resolve, sampling);
     std::vector<std::string> names;
     for (const planned_pass& p : planner.plan(frame)) names.push_back(pass_name(s, p));
     return names;

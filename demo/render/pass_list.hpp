@@ -24,6 +24,7 @@
 #include "method.hpp"
 #include "resolve.hpp"
 #include "scene/scene.hpp"
+#include "tunables.hpp"
 #include "view.hpp"
 
 namespace emcv::demo {
@@ -32,9 +33,10 @@ enum class pass_id {
     gbuffer,
     shadow,
     lighting,  ///< also lists the SSS tiles on frames with SSS passes
-    sss_adaptive_samples,  ///< N per pixel from the reprojected history (budget mode: its variance, and the
-                           ///< scale of N = clamp(lambda sigma) solved by the pass's last workgroup)
+    sss_adaptive_samples,  ///< budget mode only: each pixel's variance from the reprojected history, and the
+                           ///< scale of N = clamp(lambda sigma) solved by the pass's last workgroup
     sss_burley,            ///< adaptive methods: their own program, which also pushes (f, G) into the history
+                           ///< (and under a quality target first plans N itself)
     sss_separable_h,
     sss_separable_v,
     composite,
@@ -65,11 +67,15 @@ std::vector<std::size_t> shadow_casters(const scene& s);
 /// nothing after the first call.
 class frame_planner {
 public:
-    /// The passes do not depend on the sampling mode: a budget is solved inside the adaptive samples pass.
     /// `resolve`: whether a frame ends with the temporal resolve (not for the reference).
+    /// `sampling`: the adaptive methods' mode (sampling_mode_of the render options' defines). A budget needs
+    /// every pixel's variance before any pixel's N, so it records the adaptive-samples pass (which also solves
+    /// the frame's scale) before the method's burley program; a quality target needs only the pixel's tile,
+    /// and the burley program plans N itself (no pass more than burley-N's).
     /// `jitter`: the camera moves by taa_jitter(frame) under resolve taa (render_options::jitter; never the
     /// reference's).
-    frame_planner(const scene& s, const method& m, int width, int height, resolve_mode resolve, bool jitter = false);
+    frame_planner(const scene& s, const method& m, int width, int height, resolve_mode resolve,
+                  const sampling_mode& sampling, bool jitter = false);
 
     /// The passes of `frame`; `light_scale` multiplies each light's intensity (the window's toggles), empty
     /// for 1 everywhere.
@@ -97,6 +103,7 @@ private:
     method m_;
     int width_, height_;
     resolve_mode resolve_;
+    bool budget_;
     bool jitter_;
     std::vector<bounding_sphere> sss_bounds_;
     std::vector<std::size_t> casters_;
@@ -107,8 +114,9 @@ private:
 };
 
 /// The names of frame_planner's list for one frame, planned from scratch (no held reference result): what
-/// `--print-passes` prints for frame 0 and the tests compare with.
+/// `--print-passes` prints for frame 0 and the tests compare with. `sampling`: the adaptive methods' mode
+/// (default: the quality target, the renderer's default).
 std::vector<std::string> pass_list(const scene& s, const method& m, int frame, int width, int height,
-                                   resolve_mode resolve);
+                                   resolve_mode resolve, const sampling_mode& sampling = {});
 
 }  // namespace emcv::demo

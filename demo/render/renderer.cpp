@@ -67,7 +67,7 @@ struct renderer::impl {
 
     impl(const scene& sc, method me, render_options op)
         : s(sc), m(me), o(validated(std::move(op))), shaders(make_shader_setup(o)), programs(make_pass_programs(shaders, o.resolve)),
-          res(make_gpu_resources(s, m, o.width, o.height)), planner(s, m, o.width, o.height, o.resolve, o.jitter), constants(s),
+          res(make_gpu_resources(s, m, o.width, o.height)), planner(s, m, o.width, o.height, o.resolve, sampling_mode_of(o.defines), o.jitter), constants(s),
           light_scale(s.lights.size(), 1.0f), stamps(make_timestamps(o.timing_mode)) {
         make_history();
         if (o.resolve == resolve_mode::taa) make_resolve_targets(res, !o.jitter);
@@ -209,7 +209,8 @@ std::vector<frame_times> renderer::take_times(bool wait) { return p_->take_times
 
 void renderer::set_method(const method& m) {
     p_->m = m;
-    p_->planner = frame_planner(p_->s, m, p_->o.width, p_->o.height, p_->o.resolve, p_->o.jitter);
+    p_->planner = frame_planner(p_->s, m, p_->o.width, p_->o.height, p_->o.resolve, sampling_mode_of(p_->o.defines),
+                                p_->o.jitter);
     upload_materials(p_->res, p_->s, m);  // separable kernels follow the tap count
     p_->make_history();
     if (p_->o.resolve == resolve_mode::taa) forget_resolve_history(p_->res);  // another method's image

@@ -3,9 +3,12 @@
 // widest channel, weighted per channel, sum(w L) / sum(w) (docs/frame.md). Every formula is from
 // include/emcv/port/sss.h. N is the frame's fixed count (burley-N, reference). Built for an adaptive method
 // (the renderer defines its EMCV_ADAPTIVE_* from the method table, adaptive/history_io.h), the pass takes the
-// pixel's own N from the adaptive-samples pass and, after its sampling loop, pushes the result into the
-// pixel's history (emcv_adaptive_update_tile): sampling and history update are one dispatch. For cv the
-// tile's noise test runs between the two (adaptive/history_io.h). Where the temporal resolve reads it
+// pixel's own N and, after its sampling loop, pushes the result into the pixel's history
+// (emcv_adaptive_update_tile): sampling and history update are one dispatch. Under a quality target N needs only
+// the pixel's tile, and the pass plans it itself first (the history reprojected and pooled as in
+// adaptive/samples.h): counting, sampling and update in one dispatch, as many passes as burley-N. In budget mode N
+// comes from the adaptive-samples pass before it, whose last workgroup solved the frame's lambda. For cv the
+// tile's noise test runs between sampling and update (adaptive/history_io.h). Where the temporal resolve reads it
 // (EMCV_RENDER_FLAG_SSS_NOISE), it stores beside the estimate (alpha) this frame's noise of it, emcv_sss_noise.
 #version 450 core
 
@@ -17,7 +20,7 @@
 #if defined(EMCV_ADAPTIVE_SPVG) || defined(EMCV_ADAPTIVE_CV) || defined(EMCV_ADAPTIVE_NOTEX)
 #define EMCV_BURLEY_ADAPTIVE 1
 #define EMCV_ADAPTIVE_TILE_UPDATE 1  // emcv_adaptive_update_tile and its shared memory
-#include "adaptive/history_io.h"
+#include "adaptive/samples.h"
 #endif
 
 layout(local_size_x = EMCV_RENDER_TILE_SIZE, local_size_y = EMCV_RENDER_TILE_SIZE) in;
@@ -39,14 +42,27 @@ vec3 pending_unscattered = vec3(0.0f);
 #endif
 
 #if defined(EMCV_BURLEY_ADAPTIVE)
-/// The pixel's N from the adaptive-samples pass: its count under a quality target; in budget mode that pass
-/// leaves the per-sample variance and N = clamp(lambda sigma) is taken here, with the lambda its last
-/// workgroup solved from the same frame's variances.
+uint planned_count = 0u;  // quality target: this invocation's N, planned at the top of main (plan_quality_count)
+
+/// Quality target: reprojects pixel p's history into this frame's, pools its per-sample variance over its tile
+/// (adaptive/samples.h) and plans N = the count that brings it to the target (emcv_history_count_target). Every
+/// invocation calls it, in uniform control flow (the tile's variances meet behind a barrier).
+void plan_quality_count(ivec2 p) {
+    uint code;
+    float frames;
+    float own = emcv_adaptive_tile_sigma2(p, code, frames);
+    if (code == 0u) return;
+    float pooled_frames;
+    planned_count = uint(emcv_history_count_target(emcv_adaptive_pooled_sigma2(own, code, pooled_frames)));
+}
+
+/// The pixel's N: under a quality target the one this pass planned; in budget mode the adaptive-samples pass
+/// leaves the per-sample variance and N = clamp(lambda sigma) is taken here, with the lambda its last workgroup
+/// solved from the same frame's variances.
 uint adaptive_count(ivec2 p) {
-    uint stored = imageLoad(samples_image, p).x;
-    if (!emcv_history_budget_mode()) return stored;
+    if (!emcv_history_budget_mode()) return planned_count;
     float u = emcv_budget_u(uint(p.x), uint(p.y), frame.counters.x, frame.counters.y);
-    return uint(emcv_history_count_spend(uintBitsToFloat(stored), budget.lambda, u));
+    return uint(emcv_history_count_spend(uintBitsToFloat(imageLoad(samples_image, p).x), budget.lambda, u));
 }
 #endif
 
@@ -118,6 +134,9 @@ void main() {
     }
     barrier();
     ivec2 p = emcv_render_tile_pixel();
+#if defined(EMCV_BURLEY_ADAPTIVE)
+    if (!emcv_history_budget_mode()) plan_quality_count(p);
+#endif
     uint n = scatter(p);
 #if defined(EMCV_BURLEY_ADAPTIVE)
     emcv_adaptive_update_tile(p, pending_scattered, pending_unscattered, n);

@@ -55,15 +55,24 @@ TEST_CASE("the planner lists each row's SSS passes, and only for a scene that ca
         {sss_passes::none, {}},
         {sss_passes::burley, {"sss-burley"}},
         {sss_passes::separable, {"sss-separable-h", "sss-separable-v"}},
-        {sss_passes::adaptive, {"sss-adaptive-samples", "sss-burley"}},
+        {sss_passes::adaptive, {"sss-burley"}},  // a quality target: the burley program plans N itself
     };
+    const sampling_mode budget{true, 8.0};
     for (const method& m : all_methods()) {
         INFO("method " << m.name());
-        std::vector<std::string> sss;
-        for (const std::string& p : pass_list(sphere, m, 0, 64, 48, resolve_mode::none))
-            if (p.rfind("sss-", 0) == 0) sss.push_back(p);
+        const auto sss_of = [&](const sampling_mode& sampling) {
+            std::vector<std::string> sss;
+            for (const std::string& p : pass_list(sphere, m, 0, 64, 48, resolve_mode::none, sampling))
+                if (p.rfind("sss-", 0) == 0) sss.push_back(p);
+            return sss;
+        };
         for (const auto& [passes, names] : expected)
-            if (row_of(m).passes == passes) CHECK(sss == names);
+            if (row_of(m).passes == passes) CHECK(sss_of({}) == names);
+        // A budget adds the samples pass before an adaptive method's burley program, and nothing elsewhere.
+        if (row_of(m).passes == sss_passes::adaptive)
+            CHECK(sss_of(budget) == std::vector<std::string>{"sss-adaptive-samples", "sss-burley"});
+        else
+            CHECK(sss_of(budget) == sss_of({}));
         for (const std::string& p : pass_list(emcv::test::no_sss(), m, 0, 64, 48, resolve_mode::none))
             CHECK(p.rfind("sss-", 0) != 0);
     }
@@ -71,7 +80,7 @@ TEST_CASE("the planner lists each row's SSS passes, and only for a scene that ca
 
 TEST_CASE("the reference's planner drops its SSS passes while its inputs hold, as the renderer does") {
     const scene s = emcv::test::sphere_on_floor();
-    frame_planner planner(s, make_reference(64), 48, 32, resolve_mode::none);
+    frame_planner planner(s, make_reference(64), 48, 32, resolve_mode::none, sampling_mode{});
     const auto sss_passes_of = [&](const std::vector<planned_pass>& plan) {
         int n = 0;
         for (const planned_pass& p : plan) n += is_sss_pass(p.id) ? 1 : 0;

@@ -33,13 +33,14 @@ TEST_CASE("pass lists of scenes built in code") {
     CHECK(pass_list(sphere, method{method::kind::separable, 17}, 0, 64, 48, resolve_mode::none) ==
           std::vector<std::string>{"gbuffer", "shadow:key", "shadow:spot", "lighting", "sss-separable-h",
                                    "sss-separable-v", "composite"});
-    // The adaptive methods: one pass more than burley's, the samples pass before their own sss-burley (which
-    // also updates the history); a budget is solved inside the samples pass, so both modes record this list.
+    // The adaptive methods under a quality target: burley's passes, their own sss-burley planning N over its
+    // tile, sampling and updating the history in one dispatch. A budget needs the frame's variances before any
+    // N: one pass more than burley's, the samples pass (which also solves the frame's scale) before it.
     CHECK(pass_list(sphere, method{method::kind::cv, 0}, 0, 64, 48, resolve_mode::none) ==
+          pass_list(sphere, burley16, 0, 64, 48, resolve_mode::none));
+    CHECK(pass_list(sphere, method{method::kind::cv, 0}, 0, 64, 48, resolve_mode::none, sampling_mode{true, 8.0}) ==
           std::vector<std::string>{"gbuffer", "shadow:key", "shadow:spot", "lighting", "sss-adaptive-samples",
                                    "sss-burley", "composite"});
-    CHECK(pass_list(sphere, method{method::kind::cv, 0}, 0, 64, 48, resolve_mode::none).size() ==
-          pass_list(sphere, burley16, 0, 64, 48, resolve_mode::none).size() + 1);
     // diffuse never scatters.
     CHECK(pass_list(sphere, method{method::kind::diffuse, 0}, 0, 64, 48, resolve_mode::none) ==
           std::vector<std::string>{"gbuffer", "shadow:key", "shadow:spot", "lighting", "composite"});
@@ -171,13 +172,16 @@ TEST_CASE("the renderer records exactly the pass list", "[image-files]") {
                 }
                 CHECK(rg.take_times(true).empty());
             }
-            if (is_adaptive(m)) {  // budget mode records its solve, and exactly the list printed for it
+            if (is_adaptive(m)) {  // budget mode records its samples pass, and exactly the list printed for it
                 render_options budget = options;
                 add_define(budget.defines, "EMCV_HISTORY_SPP_BUDGET=4");
                 renderer rb(s, m, budget);
                 std::vector<std::string> recorded_budget;
                 for (const pass_time& p : rb.render(0).times.passes) recorded_budget.emplace_back(p.name);
-                CHECK(recorded_budget == pass_list(s, m, 0, 32, 24, resolve_mode::none));
+                CHECK(recorded_budget ==
+                      pass_list(s, m, 0, 32, 24, resolve_mode::none, sampling_mode_of(budget.defines)));
+                // wherever it scatters, a budget plans the frame in a pass of its own
+                CHECK(has_pass(recorded_budget, "sss-adaptive-samples") == has_pass(recorded_budget, "sss-burley"));
             }
         }
     }

@@ -71,11 +71,13 @@ private:
 };
 
 /// The defines a shader is built with by the renderer: a shader that includes the adaptive history
-/// (adaptive/history_io.h) once per adaptive method's define (method table); the burley pass, which includes it
-/// only when one is defined, also once without (burley-N); every other shader once without.
+/// (adaptive/history_io.h, or adaptive/samples.h around it) once per adaptive method's define (method table);
+/// the burley pass, which includes it only when one is defined, also once without (burley-N); every other
+/// shader once without.
 std::vector<std::string> method_defines(const fs::path& shader) {
     const std::string text = emcv_test::read_file(shader);
-    const bool includes_history = text.find("#include \"adaptive/history_io.h\"") != std::string::npos;
+    const bool includes_history = text.find("#include \"adaptive/history_io.h\"") != std::string::npos ||
+                                  text.find("#include \"adaptive/samples.h\"") != std::string::npos;
     if (!includes_history) return {""};
     std::vector<std::string> out;
     if (text.find("defined(EMCV_ADAPTIVE_SPVG)") != std::string::npos) out.emplace_back("");

@@ -58,10 +58,11 @@ history::history(const method& m, int width, int height, const gl::preprocess_op
                  const std::filesystem::path& shader_dir)
     : layout_(checked_layout(m)), budget_mode_(sampling_mode_of(shaders.defines).budget), width_(width), height_(height) {
     if (width < 1 || height < 1) throw std::runtime_error("adaptive history: empty size");
-    const std::filesystem::path dir = shader_dir / "adaptive";
-    const gl::preprocess_options options = with_method_define(shaders, row_of(m));
-    samples_program_ = gl::program::compute(dir / "samples.comp.glsl", options);
-    burley_program_ = gl::program::compute(shader_dir / "render" / "sss_burley.comp.glsl", options);
+    options_ = with_method_define(shaders, row_of(m));
+    samples_path_ = shader_dir / "adaptive" / "samples.comp.glsl";
+    // The samples program is built where it runs: in budget mode now, under a quality target only if asked for.
+    if (budget_mode_) samples_program_ = gl::program::compute(samples_path_, options_);
+    burley_program_ = gl::program::compute(shader_dir / "render" / "sss_burley.comp.glsl", options_);
     // Zeroed: no histogram yet (the first frame's pixels have no variance and take B), lambda 0.
     budget_ = gl::buffer::create();
     const emcv::port::EmcvBudgetBlock empty{};
@@ -81,11 +82,16 @@ emcv::port::EmcvBudgetBlock history::read_budget() const {
     return b;
 }
 
-void history::record_samples() {
+void history::bind_previous() const {
     const std::size_t prev = 1 - static_cast<std::size_t>(current_);
-    samples_program_.use();
     glBindTextureUnit(EMCV_ADAPTIVE_TEX_HISTORY_PREV_A, a_[prev].id());
     glBindTextureUnit(EMCV_ADAPTIVE_TEX_HISTORY_PREV_B, layout_ == history_layout::emcm2 ? b_[prev].id() : a_[prev].id());
+}
+
+void history::record_samples() {
+    if (!samples_program_.id()) samples_program_ = gl::program::compute(samples_path_, options_);
+    samples_program_.use();
+    bind_previous();
     bind_for_update();  // this frame's history, the samples image and the budget block, as the burley pass reads them
     glDispatchComputeIndirect(0);
     // The burley pass reads the images, and under a budget the lambda the last workgroup stored.
@@ -103,6 +109,7 @@ void history::bind_for_update() const {
 
 void history::use_burley() {
     burley_program_.use();
+    bind_previous();
     bind_for_update();
 }
 

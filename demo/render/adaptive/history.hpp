@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: MIT
 // emcv::demo::adaptive::history — the GPU side of the adaptive methods spvg, cv and cv-notex: their per-pixel
 // history textures (ping-pong), the per-pixel sample-count texture the burley pass reads, the budget block, and
-// the method's two programs (the renderer's previous G-buffer serves the reprojection test):
-//   adaptive-samples  before sss-burley: reproject + validate last frame's history, write N (budget mode:
-//                     the per-sample variance, added to the sigma histogram, from which the pass's last
-//                     workgroup solves the scale of N = clamp(lambda sigma, ...): include/emcv/port/budget.h)
-//   sss-burley        the renderer's burley pass built with the method's define: N per pixel (under a budget
-//                     from sigma and lambda), then this frame's (f, G) pushed into the history as a batch of N
+// the method's programs (the renderer's previous G-buffer serves the reprojection test):
+//   adaptive-samples  budget mode, before sss-burley: reproject + validate last frame's history, write the
+//                     per-sample variance, added to the sigma histogram, from which the pass's last workgroup
+//                     solves the scale of N = clamp(lambda sigma, ...) (include/emcv/port/budget.h). Built on
+//                     first use: under a quality target the renderer never records it (tests do, for its N).
+//   sss-burley        the renderer's burley pass built with the method's define: N per pixel (under a quality
+//                     target planned by the pass itself from the reprojected history, adaptive/samples.h;
+//                     under a budget from sigma and lambda), then this frame's (f, G) pushed into the history
+//                     as a batch of N
 // Layouts and choices: include/emcv/port/history.h and docs/renderer.md. Created only for an adaptive
 // method, so the other methods allocate nothing of this.
 #pragma once
@@ -37,9 +40,9 @@ struct texel {
 class history {
 public:
     /// Allocates the textures of the method's history layout (cleared: every pixel starts fresh) and builds
-    /// the method's two programs with its define (method table): the adaptive-samples pass
-    /// (shader_dir/adaptive) and its burley pass (shader_dir/render/sss_burley.comp.glsl, which then takes N
-    /// per pixel and updates the history after sampling). Throws
+    /// the method's programs with its define (method table): its burley pass
+    /// (shader_dir/render/sss_burley.comp.glsl, which then takes N per pixel and updates the history after
+    /// sampling) and, in budget mode, the adaptive-samples pass (shader_dir/adaptive). Throws
     /// gl::shader_error or std::runtime_error naming the problem, std::invalid_argument for a method that
     /// keeps no history.
     history(const method& m, int width, int height, const gl::preprocess_options& shaders,
@@ -52,15 +55,18 @@ public:
     /// The budget block as the last solve left it (lambda, planned total); tests and diagnostics.
     emcv::port::EmcvBudgetBlock read_budget() const;
 
-    /// The adaptive-samples pass. Expects what the renderer's SSS passes expect bound (frame UBO, materials,
-    /// tile list as the GL_DISPATCH_INDIRECT_BUFFER, G-buffer and motion textures at their render slots), and
-    /// the previous frame's depth, normal and material at EMCV_ADAPTIVE_TEX_PREV_* (the renderer's, which
-    /// ping-pong with its G-buffer).
-    /// Writes N (budget mode: the variance) into the samples image; in budget mode its last workgroup also
-    /// solves lambda into the budget block.
+    /// The adaptive-samples pass (built on the first call). Expects what the renderer's SSS passes expect bound
+    /// (frame UBO, materials, tile list as the GL_DISPATCH_INDIRECT_BUFFER, G-buffer and motion textures at
+    /// their render slots), and the previous frame's depth, normal and material at EMCV_ADAPTIVE_TEX_PREV_*
+    /// (the renderer's, which ping-pong with its G-buffer).
+    /// Writes the variance (under a quality target: N, which the burley pass plans alike) into the samples
+    /// image; in budget mode its last workgroup also solves lambda into the budget block. The renderer records
+    /// it in budget mode only.
     void record_samples();
     /// Makes the method's burley program current and binds what it reads and updates besides the burley
-    /// pass's own outputs: this frame's history images, the samples image and the budget block.
+    /// pass's own outputs: last frame's history (which a quality target's burley pass reprojects; the same
+    /// previous G-buffer bindings as record_samples), this frame's history images, the samples image and the
+    /// budget block.
     void use_burley();
     /// Binds this frame's history images, the samples image and the budget block at their adaptive slots
     /// (record_samples, use_burley; tests that run the history update on given values with a probe program).
@@ -80,9 +86,14 @@ public:
     gl::float_image alpha() const;
 
 private:
+    /// Last frame's history textures at EMCV_ADAPTIVE_TEX_HISTORY_PREV_* (the reprojection's source).
+    void bind_previous() const;
+
     history_layout layout_;
     bool budget_mode_;
     int width_, height_;
+    gl::preprocess_options options_;  // the method's shader options, for the samples program's first use
+    std::filesystem::path samples_path_;
     gl::program samples_program_, burley_program_;
     gl::buffer budget_;  // EmcvBudgetBlock: allocated in every mode (the passes declare it), used in budget mode
     std::array<gl::texture_2d, 2> a_, b_;  // ping-pong: [current_] is this frame's

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The SSS passes: sss-burley, sss-separable-h/-v, and the adaptive methods' sss-adaptive-samples before their
-// own sss-burley program (demo/render/adaptive). They dispatch indirectly over the SSS tiles that the lighting
-// pass listed (render/tiles.h).
+// The SSS passes: sss-burley, sss-separable-h/-v, and the adaptive methods' own sss-burley program, after their
+// sss-adaptive-samples in budget mode (demo/render/adaptive). They dispatch indirectly over the SSS tiles that the
+// lighting pass listed (render/tiles.h).
 #include "passes.hpp"
 
 #include "adaptive/bindings.h"
@@ -22,20 +22,34 @@ namespace emcv::demo::passes {
 // history for exactly those: c.history is set wherever they run. The SSS passes dispatch indirectly from the
 // tile list that the lighting pass wrote (bound once per frame, passes.hpp).
 
+namespace {
+
+/// The previous frame's G-buffer, which the current one ping-pongs with (resources.hpp, swap_gbuffer): what an
+/// adaptive method's history reprojection tests a surface against.
+void bind_previous_gbuffer(const gpu_resources& r) {
+    glBindTextureUnit(EMCV_ADAPTIVE_TEX_PREV_DEPTH, r.prev_gb_depth.id());
+    glBindTextureUnit(EMCV_ADAPTIVE_TEX_PREV_NORMAL, r.prev_gb_normal.id());
+    glBindTextureUnit(EMCV_ADAPTIVE_TEX_PREV_MATERIAL, r.prev_gb_material.id());
+}
+
+}  // namespace
+
 void sss_adaptive_samples(const frame_context& c) {
-    // The previous frame's G-buffer, which the current one ping-pongs with (resources.hpp, swap_gbuffer).
-    glBindTextureUnit(EMCV_ADAPTIVE_TEX_PREV_DEPTH, c.res.prev_gb_depth.id());
-    glBindTextureUnit(EMCV_ADAPTIVE_TEX_PREV_NORMAL, c.res.prev_gb_normal.id());
-    glBindTextureUnit(EMCV_ADAPTIVE_TEX_PREV_MATERIAL, c.res.prev_gb_material.id());
+    bind_previous_gbuffer(c.res);
     c.history->record_samples();
 }
 
 void sss_burley(const frame_context& c) {
     const gpu_resources& r = c.res;
-    // An adaptive method's burley program reads N per pixel and updates the history it binds (the adaptive
-    // methods always have one: frame_context's note above); it reads its own output back (read-write).
-    if (c.history) c.history->use_burley();
-    else c.programs.burley.use();
+    // An adaptive method's burley program takes N per pixel (under a quality target it plans N itself from
+    // the reprojected history) and updates the history it binds (the adaptive methods always have one:
+    // frame_context's note above); it reads its own output back (read-write).
+    if (c.history) {
+        bind_previous_gbuffer(r);
+        c.history->use_burley();
+    } else {
+        c.programs.burley.use();
+    }
     glBindImageTexture(EMCV_RENDER_IMG_COUNT, r.counts.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32UI);
     glBindImageTexture(EMCV_RENDER_IMG_SSS_OUT, r.sss_out.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
     glDispatchComputeIndirect(0);
