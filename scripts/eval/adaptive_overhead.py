@@ -30,6 +30,7 @@ from run_eval import publish_table
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SAMPLES = "adaptive/samples.comp.glsl"
+PLANNING = "adaptive/samples.h"  # the reprojection and the pooling, shared with the quality target's burley pass
 BUDGET = "adaptive/budget_block.h"
 BURLEY = "render/sss_burley.comp.glsl"
 HISTORY_IO = "adaptive/history_io.h"
@@ -38,12 +39,12 @@ HISTORY_IO = "adaptive/history_io.h"
 VARIANTS = [
     ("as built", "both", []),
     ("no reprojection: every history fresh (no previous G-buffer or history reads)", "samples",
-     [(SAMPLES, "    if (emcv_adaptive_reproject(p, code, a, b, s, resampled) && !resampled) {",
+     [(PLANNING, "    if (emcv_adaptive_reproject(p, code, a, b, s, resampled) && !resampled) {",
        "    s = emcv_adaptive_init();\n    if (false) {")]),
     ("nearest texel: the reprojected history not resampled (the same under a still camera)", "samples",
-     [(SAMPLES, "    if (t == vec2(0.0f) || s.count < 1u) return true;", "    if (true) return true;")]),
+     [(PLANNING, "    if (t == vec2(0.0f) || s.count < 1u) return true;", "    if (true) return true;")]),
     ("no 3x3 pooling", "samples",
-     [(SAMPLES, "    for (int dy = -1; dy <= 1; ++dy) {", "    for (int dy = 0; dy < 0; ++dy) {")]),
+     [(PLANNING, "    for (int dy = -1; dy <= 1; ++dy) {", "    for (int dy = 0; dy < 0; ++dy) {")]),
     ("budget: the workgroup histogram only (no flush to the frame's, no last-workgroup solve)", "samples",
      [(BUDGET, "    barrier();  // every pixel of the workgroup is in its histogram\n",
        "    barrier();  // every pixel of the workgroup is in its histogram\n    return;\n")]),

@@ -59,6 +59,7 @@ from run_eval import publish_table
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SAMPLES = "adaptive/samples.comp.glsl"
+PLANNING = "adaptive/samples.h"  # the reprojection and the pooling, shared with the quality target's burley pass
 HISTORY = "emcv/port/history.h"
 CHANGE_FRAME = 30
 SIZE = "96x96"
@@ -67,28 +68,30 @@ BUDGETS = (8, 16)
 # The light-change bias: each pixel's delta from its kept history's mean of G and this frame's G, pooled as the
 # 3x3 mean over the pixels that have a variance, squared, added to the relative error r / K of the pooled estimate.
 BIAS = [
-    (SAMPLES, "shared float tile_frames[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];  // effective frames of each variance\n",
+    (PLANNING, "shared float tile_frames[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];  // effective frames of each variance\n",
      "shared float tile_frames[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];  // effective frames of each variance\n"
-     "shared float tile_bias[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];\nfloat own_bias = 0.0f;\n"),
-    (SAMPLES, "    frames = emcv_adaptive_effective_frames(s);\n",
+     "shared float tile_bias[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];\nfloat own_bias = 0.0f;\nfloat pooled_bias = 0.0f;\n"),
+    (PLANNING, "    frames = emcv_adaptive_effective_frames(s);\n",
      "    frames = emcv_adaptive_effective_frames(s);\n"
      "    if (s.count >= 2u) {\n"
      "        float now = emcv_adaptive_tracked(p, texelFetch(lit_diffuse, p, 0).xyz);\n"
      "        if (s.mean.y > 1e-6f) own_bias = min((now / s.mean.y) * (now / s.mean.y) - 1.0f, 1e3f);\n"
      "        else if (now > 1e-6f) own_bias = 1e3f;\n"
      "    }\n"),
-    (SAMPLES, "    float inverse_frames = 0.0f;\n", "    float inverse_frames = 0.0f;\n    float bias_sum = 0.0f;\n"),
-    (SAMPLES, "            emcv_history_pool_add(sum, count, tile_sigma2[i]);\n",
+    (PLANNING, "    float inverse_frames = 0.0f;\n", "    float inverse_frames = 0.0f;\n    float bias_sum = 0.0f;\n"),
+    (PLANNING, "            emcv_history_pool_add(sum, count, tile_sigma2[i]);\n",
      "            emcv_history_pool_add(sum, count, tile_sigma2[i]);\n"
      "            if (tile_sigma2[i] >= 0.0f) bias_sum += tile_bias[i];\n"),
+    (PLANNING, "    pooled_frames = emcv_history_pool_frames(count, inverse_frames);\n",
+     "    pooled_frames = emcv_history_pool_frames(count, inverse_frames);\n"
+     "    pooled_bias = count > 0u ? bias_sum / float(count) : 0.0f;\n"),
     (SAMPLES, "        emcv_budget_add_raw(sigma2, frames);\n",
      "        emcv_budget_add_raw(sigma2, frames);\n"
-     "        float bias = count > 0u ? bias_sum / float(count) : 0.0f;\n"
-     "        if (frames > 0.0f) frames = 1.0f / (1.0f / frames + bias * bias / emcv_history_spend_relative_variance());\n"),
-    (SAMPLES, "    tile_frames[here] = frames;\n", "    tile_frames[here] = frames;\n    tile_bias[here] = own_bias;\n"),
+     "        if (frames > 0.0f) frames = 1.0f / (1.0f / frames + pooled_bias * pooled_bias / emcv_history_spend_relative_variance());\n"),
+    (PLANNING, "    tile_frames[here] = frames;\n", "    tile_frames[here] = frames;\n    tile_bias[here] = own_bias;\n"),
 ]
 RESTART = [
-    (SAMPLES, "    if (emcv_adaptive_reproject(p, code, a, b, s, resampled) && !resampled) {\n",
+    (PLANNING, "    if (emcv_adaptive_reproject(p, code, a, b, s, resampled) && !resampled) {\n",
      f"    if (frame.counters.x == {CHANGE_FRAME}u) {{\n        s = emcv_adaptive_init();\n"
      "        emcv_adaptive_store(p, s);\n    } else if (emcv_adaptive_reproject(p, code, a, b, s, resampled) && !resampled) {\n"),
 ]
