@@ -60,8 +60,9 @@ history::history(const method& m, int width, int height, const gl::preprocess_op
     if (width < 1 || height < 1) throw std::runtime_error("adaptive history: empty size");
     options_ = with_method_define(shaders, row_of(m));
     samples_path_ = shader_dir / "adaptive" / "samples.comp.glsl";
-    // The samples program is built where it runs: in budget mode now, under a quality target only if asked for.
-    if (budget_mode_) samples_program_ = gl::program::compute(samples_path_, options_);
+    // The samples pass and its image are made where they run: in budget mode now, under a quality target only
+    // if asked for (record_samples).
+    if (budget_mode_) make_samples_pass();
     burley_program_ = gl::program::compute(shader_dir / "render" / "sss_burley.comp.glsl", options_);
     // Zeroed: no histogram yet (the first frame's pixels have no variance and take B), lambda 0.
     budget_ = gl::buffer::create();
@@ -72,7 +73,6 @@ history::history(const method& m, int width, int height, const gl::preprocess_op
         // The second texture exists only where the layout has one (the EMCM); the others allocate nothing more.
         if (layout_ == history_layout::emcm2) b_[static_cast<std::size_t>(i)] = make_cleared_target(format_b, width, height);
     }
-    samples_ = make_cleared_target(GL_R32UI, width, height);
 }
 
 emcv::port::EmcvBudgetBlock history::read_budget() const {
@@ -88,8 +88,13 @@ void history::bind_previous() const {
     glBindTextureUnit(EMCV_ADAPTIVE_TEX_HISTORY_PREV_B, layout_ == history_layout::emcm2 ? b_[prev].id() : a_[prev].id());
 }
 
+void history::make_samples_pass() {
+    samples_program_ = gl::program::compute(samples_path_, options_);
+    samples_ = make_cleared_target(GL_R32UI, width_, height_);
+}
+
 void history::record_samples() {
-    if (!samples_program_.id()) samples_program_ = gl::program::compute(samples_path_, options_);
+    if (!samples_program_.id()) make_samples_pass();
     samples_program_.use();
     bind_previous();
     bind_for_update();  // this frame's history, the samples image and the budget block, as the burley pass reads them

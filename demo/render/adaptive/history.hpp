@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // emcv::demo::adaptive::history — the GPU side of the adaptive methods spvg, cv and cv-notex: their per-pixel
-// history textures (ping-pong), the per-pixel sample-count texture the burley pass reads, the budget block, and
-// the method's programs (the renderer's previous G-buffer serves the reprojection test):
+// history textures (ping-pong), in budget mode the per-pixel variance texture the samples pass hands the burley
+// pass, the budget block, and the method's programs (the renderer's previous G-buffer serves the reprojection
+// test):
 //   adaptive-samples  budget mode, before sss-burley: reproject + validate last frame's history, write the
 //                     per-sample variance, added to the sigma histogram, from which the pass's last workgroup
 //                     solves the scale of N = clamp(lambda sigma, ...) (include/emcv/port/budget.h). Built on
@@ -64,9 +65,9 @@ public:
     /// it in budget mode only.
     void record_samples();
     /// Makes the method's burley program current and binds what it reads and updates besides the burley
-    /// pass's own outputs: last frame's history (which a quality target's burley pass reprojects; the same
-    /// previous G-buffer bindings as record_samples), this frame's history images, the samples image and the
-    /// budget block.
+    /// pass's own outputs: last frame's history (which a quality target's burley pass reprojects, through the
+    /// previous G-buffer the caller binds as for record_samples), this frame's history images, the samples image
+    /// and the budget block.
     void use_burley();
     /// Binds this frame's history images, the samples image and the budget block at their adaptive slots
     /// (record_samples, use_burley; tests that run the history update on given values with a probe program).
@@ -76,6 +77,7 @@ public:
     /// a frame without SSS pass, marks it unusable (material 0), so the next frame starts fresh everywhere.
     void end_frame(bool updated);
 
+    /// The samples image (0 under a quality target until record_samples made it: the burley pass plans N itself).
     GLuint samples_texture() const noexcept { return samples_.id(); }
 
     /// The newest history (after the last end_frame: what the next frame reprojects from), read back.
@@ -88,6 +90,9 @@ public:
 private:
     /// Last frame's history textures at EMCV_ADAPTIVE_TEX_HISTORY_PREV_* (the reprojection's source).
     void bind_previous() const;
+    /// Builds the samples program and allocates the samples image it writes (budget mode, or a test's first
+    /// record_samples under a quality target).
+    void make_samples_pass();
 
     history_layout layout_;
     bool budget_mode_;
