@@ -12,15 +12,33 @@ the efficiency as the pass runs (threads in tile order), and as it would be with
 its pixels in order of N (the smallest 32 counts in the first warp), for W = 32 (NVIDIA warps) and W = 8
 (llvmpipe's 256-bit SIMD batches of 8 floats).
 
+With --steady it answers instead how steady the sampling work is from frame to frame, at a budget B: for each
+scene (--scenes) it renders burley-B and the adaptive methods side by side for --frames N frames and dumps every
+frame's counts from --first on; per frame, the samples (sum of N over the SSS pixels) and the warp work (W = 32,
+as run: 32 x the warp's largest N, summed over the dispatched warps), which is what a GPU's sampling loop takes
+time for; per scene and method one markdown row: the SSS pixels' p95 / median over those frames (burley-B's
+work follows them alone), then the median, p95 / median and max / median of each of the two. Deterministic: counts,
+not clocks (llvmpipe's clock is too noisy to read a 10% spread; docs/renderer.md, "Steady cost").
+
 Usage: /usr/bin/python3 scripts/eval/warp_efficiency.py [--build build] [--scene light-off] [--size 128x128]
            [--frames 29,30,33,59] [--spp-budget 8 | --target-variance V] [--methods spvg,cv,cv-notex]
+       /usr/bin/python3 scripts/eval/warp_efficiency.py --steady [--build build] [--size 128x128] [--frames 60]
+           [--first 2] [--spp-budget 8] [--scenes light-off,...] [--methods spvg,cv,cv-notex] [--write-doc]
+With --write-doc the --steady table replaces the GENERATED block steady-work-b<B> of docs/renderer.md.
 """
 import argparse
 import csv
+import os
 import subprocess
+import sys
 import tempfile
 
+from run_eval import publish_table
+
 TILE = 8
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+STEADY_SCENES = ("static,light-off,flicker,club,moving,variations/burst-1,variations/burst-3,"
+                 "variations/camera-switch,variations/fade,variations/switch-on")
 
 
 def read_grid(path):
@@ -49,16 +67,86 @@ def efficiency(counts, mask, width, sort):
     return {w: (acc[0] / acc[1] if acc[1] > 0 else 1.0) for w, acc in ws.items()}
 
 
+def frame_work(counts_path, mask_path):
+    """(SSS pixels, samples, warp work at W = 32 as run) of one frame's dumped counts."""
+    import numpy as np
+    counts = np.loadtxt(counts_path, delimiter=",", ndmin=2)[::-1]  # bottom row first, as GL
+    mask = np.loadtxt(mask_path, delimiter=",", ndmin=2)[::-1] > 0
+    counts = np.where(mask, counts, 0.0)
+    h, w = counts.shape
+    ph, pw = -h % TILE, -w % TILE  # the last tiles' pixels past the image edge take no samples
+    counts = np.pad(counts, ((0, ph), (0, pw)))
+    mask = np.pad(mask, ((0, ph), (0, pw)))
+    th, tw = counts.shape[0] // TILE, counts.shape[1] // TILE
+    # tiles x rows-of-4 (a 32-thread warp: rows 0-3, then 4-7 of the tile) x 32 threads
+    warps = counts.reshape(th, 2, 4, tw, TILE).transpose(0, 3, 1, 2, 4).reshape(th, tw, 2, 32)
+    dispatched = mask.reshape(th, TILE, tw, TILE).any(axis=(1, 3))  # tiles with an SSS pixel
+    work = 32.0 * warps.max(axis=3).sum(axis=2)
+    return int(mask.sum()), float(counts.sum()), float(work[dispatched].sum())
+
+
+def spread(values):
+    """(median, p95 / median, max / median) of a frame series (p95: numpy's linear interpolation)."""
+    import numpy as np
+    v = np.asarray(values, dtype=float)
+    m = float(np.median(v))
+    return m, float(np.percentile(v, 95)) / m, float(v.max()) / m
+
+
+def steady(a, argv):
+    budget = a.spp_budget
+    methods = [f"burley-{budget}"] + a.methods.split(",")
+    frames = int(a.frames)
+    dumped = list(range(a.first, frames))
+    lines = [f"{a.size}, budget {budget} spp, frames {a.first}-{frames - 1}: `emcv-eval --scene SCENE --size {a.size} "
+             f"--frames {frames} --method {','.join(methods)} --spp-budget {budget} --heatmaps {a.first},...,"
+             f"{frames - 1} --heatmap-dir DIR`", "",
+             "| scene | method | SSS pixels p95 / median | samples median | p95 / median | max / median "
+             "| warp work (W=32) median | p95 / median | max / median |",
+             "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
+    for scene in a.scenes.split(","):
+        path = os.path.join(ROOT, "demo", "scenes", scene + ".json")
+        with tempfile.TemporaryDirectory() as d:
+            cmd = [f"{a.build}/bin/emcv-eval", "--scene", path if "/" in scene else scene, "--size", a.size,
+                   "--frames", str(frames), "--method", ",".join(methods), "--spp-budget", budget,
+                   "--heatmaps", ",".join(str(f) for f in dumped), "--heatmap-dir", d]
+            subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+            for m in methods:
+                per = [frame_work(f"{d}/{m}.f{f}.samples.csv", f"{d}/{m}.f{f}.mask.csv") for f in dumped]
+                pixels = spread([p[0] for p in per])
+                samples = spread([p[1] for p in per])
+                work = spread([p[2] for p in per])
+                lines.append(f"| {scene} | {m} | {pixels[1]:.3f} | {samples[0]:.0f} | {samples[1]:.3f} | {samples[2]:.3f} "
+                             f"| {work[0]:.0f} | {work[1]:.3f} | {work[2]:.3f} |")
+    publish_table("\n".join(lines), a.write_doc, os.path.join(ROOT, "docs", "renderer.md"), f"steady-work-b{budget}",
+                  "scripts/eval/warp_efficiency.py", argv)
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--build", default="build")
     p.add_argument("--scene", default="light-off")
     p.add_argument("--size", default="128x128")
-    p.add_argument("--frames", default="29,30,33,59")
+    p.add_argument("--frames", default=None, help="the frames dumped (default 29,30,33,59); --steady: frames rendered (default 60)")
     p.add_argument("--spp-budget", default="8")
     p.add_argument("--target-variance", default=None)
     p.add_argument("--methods", default="spvg,cv,cv-notex")
+    p.add_argument("--steady", action="store_true", help="frame-to-frame spread of the samples and the warp work")
+    p.add_argument("--first", type=int, default=2, help="--steady: the first frame counted (default 2)")
+    p.add_argument("--scenes", default=STEADY_SCENES, help="--steady: built-in names or paths under demo/scenes without .json")
+    p.add_argument("--write-doc", action="store_true",
+                   help="--steady: also replace the GENERATED block steady-work-b<B> of docs/renderer.md")
+    argv = sys.argv[1:]
     a = p.parse_args()
+    if a.write_doc and not a.steady:
+        p.error("--write-doc writes the --steady table")
+    if a.steady:
+        if a.target_variance:
+            p.error("--steady compares at a budget: not with --target-variance")
+        a.frames = a.frames or "60"
+        steady(a, argv)
+        return
+    a.frames = a.frames or "29,30,33,59"
     frames = [int(f) for f in a.frames.split(",")]
     methods = a.methods.split(",")
     with tempfile.TemporaryDirectory() as d:
