@@ -11,12 +11,14 @@
 #include "adaptive/budget_block.h"
 #include "render/gbuffer_read.h"
 
+// Coherent: under a quality target the burley pass plans a pixel's history in one thread and, after sorting the
+// tile by N, updates it in another (sss_burley.comp.glsl, sort_tile_by_count).
 #if defined(EMCV_ADAPTIVE_CV)
-layout(rgba32f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_A)) uniform image2D history_a;
-layout(rg32f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_B)) uniform image2D history_b;
+layout(rgba32f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_A)) coherent uniform image2D history_a;
+layout(rg32f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_B)) coherent uniform image2D history_b;
 #define EmcvAdaptiveState EmcvEmcm2
 #elif defined(EMCV_ADAPTIVE_SPVG) || defined(EMCV_ADAPTIVE_NOTEX)
-layout(rgba16f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_A)) uniform image2D history_a;
+layout(rgba16f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_A)) coherent uniform image2D history_a;
 #define EmcvAdaptiveState EmcvMovingStats
 #else
 #error "the renderer defines the method: EMCV_ADAPTIVE_SPVG, EMCV_ADAPTIVE_CV or EMCV_ADAPTIVE_NOTEX (its row of the method table)"

@@ -7,8 +7,10 @@
 // (emcv_adaptive_update_tile): sampling and history update are one dispatch. Under a quality target N needs only
 // the pixel's tile, and the pass plans it itself first (the history reprojected and pooled as in
 // adaptive/samples.h): counting, sampling and update in one dispatch, as many passes as burley-N. In budget mode N
-// comes from the adaptive-samples pass before it, whose last workgroup solved the frame's lambda. For cv the
-// tile's noise test runs between sampling and update (adaptive/history_io.h). Where the temporal resolve reads it
+// comes from the adaptive-samples pass before it, whose last workgroup solved the frame's lambda. Once every
+// pixel's N is known the tile hands its pixels to its threads in order of N (sort_tile_by_count), so that a warp
+// (or a CPU's SIMD batch) loops over pixels of like N instead of waiting on its largest. For cv the tile's noise
+// test runs between sampling and update (adaptive/history_io.h). Where the temporal resolve reads it
 // (EMCV_RENDER_FLAG_SSS_NOISE), it stores beside the estimate (alpha) this frame's noise of it, emcv_sss_noise.
 #version 450 core
 
@@ -43,6 +45,13 @@ vec3 pending_unscattered = vec3(0.0f);
 
 #if defined(EMCV_BURLEY_ADAPTIVE)
 uint planned_count = 0u;  // quality target: this invocation's N, planned at the top of main (plan_quality_count)
+uint assigned_count = 0u;  // the N of the pixel this invocation samples (sort_tile_by_count)
+// The tile's counting sort by N, over as many keys as the tile has pixels: per key its pixels' count, then its
+// first slot; each slot's pixel (local index); each pixel's N.
+#define SORT_KEYS (EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE)
+shared uint sort_offset[SORT_KEYS];
+shared uint sort_pixel[SORT_KEYS];
+shared uint sort_count[SORT_KEYS];
 
 /// Quality target: reprojects pixel p's history into this frame's, pools its per-sample variance over its tile
 /// (adaptive/samples.h) and plans N = the count that brings it to the target (emcv_history_count_target). Every
@@ -64,6 +73,45 @@ uint adaptive_count(ivec2 p) {
     float u = emcv_budget_u(uint(p.x), uint(p.y), frame.counters.x, frame.counters.y);
     return uint(emcv_history_count_spend(uintBitsToFloat(imageLoad(samples_image, p).x), budget.lambda, u));
 }
+
+/// Hands the tile's pixels to its threads in order of N: this invocation's pixel p (its own on entry, 0 samples
+/// where it is off screen or does not scatter) becomes the one of the tile's sorted order at its own index, and
+/// assigned_count that pixel's N. A warp runs as long as its largest N: sorted, each warp (each of llvmpipe's
+/// SIMD batches) holds pixels of like N, and the pixels that take none come first. A counting sort over SORT_KEYS
+/// keys (N scaled monotonically onto them: EMCV_HISTORY_N_MAX may exceed them), the order within a key as the
+/// atomics fall: what a pixel's samples and history update compute does not depend on the thread that runs them,
+/// so the image is the same bit for bit. The history this pass planned for a pixel is loaded by whichever thread
+/// takes it: the images are coherent (adaptive/history_io.h) and the barriers here follow memoryBarrierImage.
+/// Every invocation calls it, in uniform control flow.
+void sort_tile_by_count(inout ivec2 p) {
+    uint here = gl_LocalInvocationIndex;
+    uint own = 0u;
+    if (emcv_render_on_screen(p) && emcv_render_scatters(emcv_render_material_code(p))) own = adaptive_count(p);
+    sort_offset[here] = 0u;
+    sort_count[here] = own;
+    memoryBarrierImage();  // the history planned for p (quality target), loaded by the thread that takes p
+    barrier();
+    uint key = min(uint(float(own) * (float(SORT_KEYS - 1) / float(EMCV_HISTORY_N_MAX)) + 0.5f), uint(SORT_KEYS - 1));
+    atomicAdd(sort_offset[key], 1u);
+    barrier();
+    if (here == 0u) {  // exclusive prefix sum: each key's first slot
+        uint first = 0u;
+        for (uint k = 0u; k < uint(SORT_KEYS); ++k) {
+            uint count = sort_offset[k];
+            sort_offset[k] = first;
+            first += count;
+        }
+    }
+    barrier();
+    sort_pixel[atomicAdd(sort_offset[key], 1u)] = here;
+    barrier();
+    uint taken = sort_pixel[here];
+    assigned_count = sort_count[taken];
+    // Workgroups past the tile count hold (-1, -1) everywhere (emcv_render_tile_pixel): they stay off screen.
+    if (p.x >= 0)
+        p += ivec2(int(taken % uint(EMCV_RENDER_TILE_SIZE)), int(taken / uint(EMCV_RENDER_TILE_SIZE))) -
+             ivec2(gl_LocalInvocationID.xy);
+}
 #endif
 
 /// Scatters pixel p; returns the samples it took (0 off screen and for non-scattering pixels).
@@ -80,7 +128,7 @@ uint scatter(ivec2 p) {
     bool approximate = (frame.counters.w & EMCV_RENDER_FLAG_APPROXIMATE_CDF) != 0u;
     vec2 rotation = emcv_sss_rotation(uint(p.x), uint(p.y), frame.counters.x, frame.counters.y);
 #if defined(EMCV_BURLEY_ADAPTIVE)
-    uint n = adaptive_count(p);
+    uint n = assigned_count;
 #else
     uint n = uint(frame.sss.x);
 #endif
@@ -136,6 +184,7 @@ void main() {
     ivec2 p = emcv_render_tile_pixel();
 #if defined(EMCV_BURLEY_ADAPTIVE)
     if (!emcv_history_budget_mode()) plan_quality_count(p);
+    sort_tile_by_count(p);
 #endif
     uint n = scatter(p);
 #if defined(EMCV_BURLEY_ADAPTIVE)
