@@ -8,15 +8,17 @@ x + 8 y) runs as long as its largest N. Efficiency = sum of N / (W x sum over wa
 over the warps of the tiles that hold an SSS pixel (the ones dispatched); 1 for a fixed count over full tiles.
 
 Reads the per-pixel counts that emcv-eval dumps (--heatmaps) and prints a markdown row per method and frame:
-the efficiency as the pass runs (threads in tile order), and as it would be with each tile's threads taking
-its pixels in order of N (the smallest 32 counts in the first warp), for W = 32 (NVIDIA warps) and W = 8
-(llvmpipe's 256-bit SIMD batches of 8 floats).
+the efficiency with the threads taking the tile's pixels in tile order, and with each tile's threads taking its
+pixels in order of N (the smallest 32 counts in the first warp), for W = 32 (NVIDIA warps) and W = 8 (llvmpipe's
+256-bit SIMD batches of 8 floats). The adaptive methods' burley pass runs the sorted order
+(sss_burley.comp.glsl, sort_tile_by_count: a counting sort whose keys merge a few neighbouring N above 63, so
+within a fraction of a sample of this model); burley-N, whose N is one count, runs tile order.
 
 With --steady it answers instead how steady the sampling work is from frame to frame, at a budget B: for each
 scene (--scenes) it renders burley-B and the adaptive methods side by side for --frames N frames and dumps every
 frame's counts from --first on; per frame, the samples (sum of N over the SSS pixels) and the warp work (W = 32,
-as run: 32 x the warp's largest N, summed over the dispatched warps), which is what a GPU's sampling loop takes
-time for; per scene and method one markdown row: the SSS pixels' p95 / median over those frames (burley-B's
+in the order the pass runs: 32 x the warp's largest N, summed over the dispatched warps), which is what a GPU's
+sampling loop takes time for; per scene and method one markdown row: the SSS pixels' p95 / median over those frames (burley-B's
 work follows them alone), then the median, p95 / median and max / median of each of the two. Deterministic: counts,
 not clocks (llvmpipe's clock is too noisy to read a 10% spread; docs/renderer.md, "Steady cost").
 
@@ -67,8 +69,9 @@ def efficiency(counts, mask, width, sort):
     return {w: (acc[0] / acc[1] if acc[1] > 0 else 1.0) for w, acc in ws.items()}
 
 
-def frame_work(counts_path, mask_path):
-    """(SSS pixels, samples, warp work at W = 32 as run) of one frame's dumped counts."""
+def frame_work(counts_path, mask_path, sort):
+    """(SSS pixels, samples, warp work at W = 32) of one frame's dumped counts, each tile's pixels handed to its
+    threads in order of N (`sort`, the adaptive methods' burley pass) or in tile order."""
     import numpy as np
     counts = np.loadtxt(counts_path, delimiter=",", ndmin=2)[::-1]  # bottom row first, as GL
     mask = np.loadtxt(mask_path, delimiter=",", ndmin=2)[::-1] > 0
@@ -79,7 +82,10 @@ def frame_work(counts_path, mask_path):
     mask = np.pad(mask, ((0, ph), (0, pw)))
     th, tw = counts.shape[0] // TILE, counts.shape[1] // TILE
     # tiles x rows-of-4 (a 32-thread warp: rows 0-3, then 4-7 of the tile) x 32 threads
-    warps = counts.reshape(th, 2, 4, tw, TILE).transpose(0, 3, 1, 2, 4).reshape(th, tw, 2, 32)
+    tiles = counts.reshape(th, TILE, tw, TILE).transpose(0, 2, 1, 3).reshape(th, tw, TILE * TILE)
+    if sort:
+        tiles = np.sort(tiles, axis=2)
+    warps = tiles.reshape(th, tw, 2, 32)
     dispatched = mask.reshape(th, TILE, tw, TILE).any(axis=(1, 3))  # tiles with an SSS pixel
     work = 32.0 * warps.max(axis=3).sum(axis=2)
     return int(mask.sum()), float(counts.sum()), float(work[dispatched].sum())
@@ -112,7 +118,8 @@ def steady(a, argv):
                    "--heatmaps", ",".join(str(f) for f in dumped), "--heatmap-dir", d]
             subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
             for m in methods:
-                per = [frame_work(f"{d}/{m}.f{f}.samples.csv", f"{d}/{m}.f{f}.mask.csv") for f in dumped]
+                per = [frame_work(f"{d}/{m}.f{f}.samples.csv", f"{d}/{m}.f{f}.mask.csv", not m.startswith("burley-"))
+                       for f in dumped]
                 pixels = spread([p[0] for p in per])
                 samples = spread([p[1] for p in per])
                 work = spread([p[2] for p in per])
@@ -159,7 +166,7 @@ def main():
         shown = ["emcv-eval"] + ["DIR" if c == d else c for c in cmd[1:]]
         print(f"{a.scene}, {a.size}, {mode}: `{' '.join(shown)}`")
         print()
-        print("| method | frame | W=32 as run | W=32 sorted per tile | W=8 as run | W=8 sorted per tile |")
+        print("| method | frame | W=32 tile order | W=32 sorted per tile (as run) | W=8 tile order | W=8 sorted per tile (as run) |")
         print("|---|---|---|---|---|---|")
         for m in methods:
             for f in frames:
