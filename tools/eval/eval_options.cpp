@@ -44,7 +44,8 @@ std::string usage_text() {
            "sss_ms and frame_ms, gpu or wall; resolve: taa or none, the reference never resolves). Under GPU\n"
            "timestamps rows are printed once every method's stamps arrived.\n"
            "--sss-scale multiplies every scattering material's mean free path (the radius on screen).\n"
-           "--heatmaps writes <method>.f<F>.samples.csv (and .alpha.csv for cv) under DIR, top row first.\n"
+           "--heatmaps writes <method>.f<F>.samples.csv, .mask.csv (1 at SSS pixels; and .alpha.csv for cv)\n"
+           "under DIR, top row first.\n"
            "--define sets a tunable of the port headers for every shader (as emcv-demo --define).\n" +
            demo::sampling_flags_help() + demo::timing_flag_help() + demo::resolve_flag_help() +
            "Methods (--method takes these names; emcv-demo --list-methods prints them for scripts):\n" +
