@@ -149,8 +149,10 @@ inline void push(const sampling_params&, float eta, port::EmcvEmcm2& s, float f,
     port::emcv_history_push_cv(s, f, g, eta, n);
 }
 inline void push(const sampling_params& p, float eta, port::EmcvMovingStats& s, float f, float g, float n) {
-    const float x = p.estimator == sampling_estimator::cv_notex ? port::emcv_cv_residual(f, 1.0f, g) : f;
-    port::emcv_moving_stats_push_batch(s, x, eta, n);
+    if (p.estimator == sampling_estimator::cv_notex)
+        port::emcv_history_push_notex(s, f, g, eta, n);
+    else
+        port::emcv_moving_stats_push_batch(s, f, eta, n);
 }
 
 inline float sigma2_of(const port::EmcvEmcm2& s, float eta) { return port::emcv_history_sigma2_cv(s, eta); }
@@ -170,7 +172,8 @@ inline constexpr std::size_t sampling_tile_size = 8;
 /// Pushes each pixel's frame into its history, as the renderer's adaptive burley pass does after sampling: f is
 /// the pixel's output (the mean of the taken[i] samples it took), g its in-frame control G (both as the tracked scalar,
 /// e.g. gamma-space luminance); the push is a batch of taken[i] (supp. Eq. 25-27), so the history estimates
-/// the variance of one sample. spvg and cv-notex push f and f - G (port::emcv_moving_stats_push_batch); cv
+/// the variance of one sample. spvg pushes f (port::emcv_moving_stats_push_batch), cv-notex f - G
+/// (port::emcv_history_push_notex: the change test below at alpha = 1, no level's bias, no noise test); cv
 /// pushes the pair (f, G) through port::emcv_history_push_cv: once the history is 1 / eta frames old, a residual
 /// move beyond 5 sigma that G's move does not explain enters with the weight of a 5-sigma move and restarts
 /// the means at (f, G); where a move the control explains still carries f's level beyond 5 sigma, the count is

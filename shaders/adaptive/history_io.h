@@ -145,7 +145,8 @@ EmcvAdaptiveState emcv_adaptive_load(ivec2 p) {
 ///   cv        EMCM over (f, G) (eta 0.2), a change the control does not explain clipped (emcv_history_push_cv),
 ///             then the comoments scaled by `noise_ratio`, the tile's noise test (emcv_history_noise_ratio,
 ///             emcv_history_rescale_cv)
-///   cv-notex  moving mean/variance of r = f - G (alpha = 1, eta 0.2)
+///   cv-notex  moving mean/variance of r = f - G (alpha = 1, eta 0.2), a change G does not explain clipped as
+///             cv's (emcv_history_push_notex)
 /// A pixel that took no samples learns nothing about its noise and is not pushed. A non-finite f or G is
 /// refused by the port (state unchanged); a poisoned stored state is reset, never used.
 void emcv_adaptive_update(ivec2 p, EmcvAdaptiveState s, float f, float g, uint n, float noise_ratio) {
@@ -154,7 +155,7 @@ void emcv_adaptive_update(ivec2 p, EmcvAdaptiveState s, float f, float g, uint n
     emcv_history_push_cv(s, f, g, EMCV_HISTORY_ETA_EMCM, float(n));
     emcv_history_rescale_cv(s, noise_ratio);
 #elif defined(EMCV_ADAPTIVE_NOTEX)
-    emcv_moving_stats_push_batch(s, emcv_cv_residual(f, 1.0f, g), EMCV_HISTORY_ETA_MOVING, float(n));
+    emcv_history_push_notex(s, f, g, EMCV_HISTORY_ETA_MOVING, float(n));
 #else
     emcv_moving_stats_push_batch(s, f, EMCV_HISTORY_ETA_MOVING, float(n));
 #endif

@@ -228,8 +228,9 @@ struct harness {
 };
 
 /// Per pixel and frame: a light that switches (x0.25 at frame 6) under a per-pixel, per-frame noise on f, so
-/// every estimator field moves. Grey levels on a 1/1024 grid (exact in binary16).
-void light_at(int frame, std::vector<float>& g, std::vector<float>& f) {
+/// every estimator field moves; with `unexplained`, from the switch every fourth pixel's f also moves by 64/1024
+/// more than G explains (a change for cv-notex's change test). Grey levels on a 1/1024 grid (exact in binary16).
+void light_at(int frame, std::vector<float>& g, std::vector<float>& f, bool unexplained = false) {
     g.resize(pixels);
     f.resize(pixels);
     for (std::size_t i = 0; i < pixels; ++i) {
@@ -238,6 +239,7 @@ void light_at(int frame, std::vector<float>& g, std::vector<float>& f) {
         const int noise = int((i * 7919u + std::size_t(frame) * 104729u) % 41u) - 20;
         g[i] = std::round(level * base * 1024.0f) / 1024.0f;
         f[i] = std::round(level * (0.9f * base + float(noise) / 1024.0f) * 1024.0f) / 1024.0f;
+        if (unexplained && frame >= 6 && i % 4u == 0u) f[i] += 64.0f / 1024.0f;
     }
 }
 
@@ -297,9 +299,9 @@ TEST_CASE("the GPU history equals the C++ estimators fed the same per-pixel valu
         history h(emcv::demo::method{k, 0}, width, height, shader_options(), emcv_test::shader_dir());
         std::vector<texel> previous(pixels);  // fresh: all zero
         std::vector<float> g, f;
-        int compared = 0, noise_rescaled = 0;
+        int compared = 0, noise_rescaled = 0, notex_clipped = 0;
         for (int frame = 0; frame < 12; ++frame) {
-            light_at(frame, g, f);
+            light_at(frame, g, f, k == kind::cv_notex);
             hx.set_light(g, f);
             std::vector<std::uint32_t> taken(pixels);
             for (std::size_t i = 0; i < pixels; ++i) taken[i] = taken_at(i, frame);
@@ -379,14 +381,32 @@ TEST_CASE("the GPU history equals the C++ estimators fed the same per-pixel valu
                     emcv::port::EmcvMovingStats port;
                     REQUIRE(emcv::port::emcv_history_decode_stats(was.a, port));
                     const float x = k == kind::spvg ? ft[i] : emcv::cv_residual(ft[i], 1.0f, gt[i]);
-                    if (batch > 0.0f) emcv::port::emcv_moving_stats_push_batch(port, x, EMCV_HISTORY_ETA_MOVING, batch);
+                    if (batch > 0.0f) {
+                        if (k == kind::spvg)
+                            emcv::port::emcv_moving_stats_push_batch(port, x, EMCV_HISTORY_ETA_MOVING, batch);
+                        else
+                            emcv::port::emcv_history_push_notex(port, ft[i], gt[i], EMCV_HISTORY_ETA_MOVING, batch);
+                    }
                     const float unit = emcv::port::emcv_history_variance_unit();
                     // Independently of the port: var' = (1 - eta)(var + eta N d^2) (supp. Eq. 21, 25-27) in
-                    // double, against the stored binary16 value (relative step 2^-11).
+                    // double, against the stored binary16 value (relative step 2^-11). cv-notex's change test:
+                    // once count * eta >= 1, a move with N d^2 > 25 sigma^2 (sigma^2 the stored variance times
+                    // (2 - eta) / (2 (1 - eta))) enters with N = 25 sigma^2 / d^2 and the mean restarts at x.
                     if (batch > 0.0f && port.count > 1) {
                         const double d = double(x) - double(was.a.x), eta = EMCV_HISTORY_ETA_MOVING;
-                        const double expect = (1.0 - eta) * (double(was.a.y) * unit + eta * double(batch) * d * d);
-                        CHECK(std::fabs(double(now[i].a.y) * unit - expect) <= 1e-3 * expect + 1e-9);
+                        const double var = double(was.a.y) * unit, sigma2_was = var * (2.0 - eta) / (2.0 * (1.0 - eta));
+                        const bool tested = k == kind::cv_notex && double(was.a.z) * eta >= 1.0 && sigma2_was > 0.0;
+                        const double z = tested ? double(batch) * d * d / (25.0 * sigma2_was) : 0.0;
+                        double weight = double(batch);
+                        if (z > 1.0) {
+                            weight = 25.0 * sigma2_was / (d * d);
+                            ++notex_clipped;
+                            CHECK(half_ulps(now[i].a.x, half(x)) <= 1);  // the mean restarts at this frame's r
+                        }
+                        const double expect = (1.0 - eta) * (var + eta * weight * d * d);
+                        // (a move within 1e-3 of the bound may fall either way in fp32)
+                        if (std::fabs(z - 1.0) > 1e-3)
+                            CHECK(std::fabs(double(now[i].a.y) * unit - expect) <= 1e-3 * expect + 1e-9);
                     }
                     CHECK(half_ulps(now[i].a.x, half(port.mean)) <= 1);
                     INFO("stored var / unit: GPU " << now[i].a.y << ", C++ " << port.variance / unit);
@@ -412,6 +432,10 @@ TEST_CASE("the GPU history equals the C++ estimators fed the same per-pixel valu
         // The stream's switch (x0.25 at frame 6) makes the tile's noise fall: the comparison above covers the
         // rescaled comoments too.
         if (k == kind::cv) CHECK(noise_rescaled > 0);
+        // cv-notex's stream moves every fourth pixel's f from the switch on by more than G explains: the change
+        // test's clipped pushes are covered too.
+        INFO("cv-notex pushes clipped by the change test: " << notex_clipped);
+        if (k == kind::cv_notex) CHECK(notex_clipped > 0);
     }
     CHECK(messenger.error_count() == 0);
 }

@@ -343,6 +343,31 @@ EMCV_FN bool emcv_history_push_cv(EMCV_INOUT(EmcvEmcm2) s, float f, float g, flo
     return pushed;
 }
 
+/// cv-notex's update: its residual r = f - G (alpha = 1; f and G the means of this frame's n samples) into the
+/// moving mean/variance as a batch (supp. Eq. 25-27), with cv's change test at alpha = 1: once the history is as
+/// old as its memory, a move e = r - mu_r beyond 5 sigma (n e^2 > 25 sigma^2, Chebyshev as in
+/// emcv_history_push_cv) is a change that G does not explain: it enters with the weight of a 5-sigma move
+/// (n' = 25 sigma^2 / e^2) and the mean restarts at r. Without it, a light change moves r wherever the scattered
+/// light differs from the unscattered (a shadow edge the kernel reaches across), and that step stays in sigma^2 as
+/// noise for many frames (it decays at 1 - eta a frame), so the budget spends there rather than where the noise
+/// is (docs/renderer.md, "cv-notex and the change test"). Returns false when r is not finite.
+EMCV_FN bool emcv_history_push_notex(EMCV_INOUT(EmcvMovingStats) s, float f, float g, float eta, float n) {
+    float r = emcv_cv_residual(f, 1.0f, g);
+    float sigma2 = emcv_history_sigma2_moving(s, eta);
+    bool mature = float(s.count) * eta >= 1.0f;
+    if (mature && sigma2 > 0.0f && emcv_moving_stats_valid(s) && emcv_is_finite(r)) {
+        EMCV_PRECISE float e = r - s.mean;
+        EMCV_PRECISE float z2 = n * e * e;
+        if (z2 > emcv_history_change_z2() * sigma2) {
+            EMCV_PRECISE float weight = emcv_history_change_z2() * sigma2 / (e * e);
+            emcv_moving_stats_push_batch(s, r, eta, weight);
+            s.mean = r;
+            return true;
+        }
+    }
+    return emcv_moving_stats_push_batch(s, r, eta, n);
+}
+
 // The tile's noise test (docs/renderer.md, "After a change: the stale allocation"). A light change the control
 // explains moves no residual, so the change test above does not fire, yet the noise may have changed: a pixel
 // whose samples reached the lit surface of a light that went off keeps that light's variance for about 1 / eta
