@@ -123,6 +123,9 @@ void main() {
     emcv_moving_stats_push_batch(stats, f, EMCV_HISTORY_ETA_MOVING, float(max(n, 1)));
     EmcvMovingStats res = residual.state[index];
     emcv_moving_stats_push(res, residual_value, EMCV_HISTORY_ETA_MOVING);
+    // cv-notex's push (its residual f - G at alpha = 1, with cv's change test) into a copy of that state.
+    EmcvMovingStats notex = res;
+    emcv_history_push_notex(notex, f, g, EMCV_HISTORY_ETA_MOVING, float(max(n, 1)));
     EmcvEmcm2 plain = covariance.state[index];
     emcv_emcm2_push(plain, vec2(f, g), EMCV_HISTORY_ETA_EMCM);
     covariance.state[index] = plain;
@@ -137,7 +140,7 @@ void main() {
     const float share = emcv_budget_bin_samples(budget.block.lambda, bin_sum, 1u, float(EMCV_HISTORY_N_MIN),
                                                 float(EMCV_HISTORY_N_MAX));
     const uint lambda_span = emcv_budget_lambda_high_bits() - emcv_budget_lambda_low_bits();
-    const float hashed = emcv_uint_to_unit_float(emcv_pcg(index)) + emcv_hammersley(index, width).y +
+    const float hashed = emcv_uint_to_unit_float(emcv_pcg(index)) + emcv_hammersley(index, width).y + notex.mean +
                          emcv_burley_sample_exact(emcv_r2(index).x, 1.0f) + emcv_burley_cdf(1.0f, 1.0f) +
                          emcv_burley_profile(1.0f, 1.0f) + emcv_bits_float(emcv_float_bits(share)) +
                          emcv_cv_residual_variance(cov.cov.x, cov.cov.y, cov.cov.z, alpha) +
