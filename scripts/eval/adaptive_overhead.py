@@ -83,6 +83,20 @@ def make_variant(root, edits, source="shaders"):
     return root
 
 
+def variant_study_arguments(argv, doc, seeds, block):
+    """The command line shared by the scripts that render variants of the adaptive shaders into a table of
+    docs/renderer.md (stale_allocation.py, notex_change.py): --build, --seeds (a comma list, parsed), --jobs and
+    --write-doc (replace the GENERATED block `block`)."""
+    p = argparse.ArgumentParser(description=doc.split("\n")[0])
+    p.add_argument("--build", default=os.path.join(ROOT, "build"))
+    p.add_argument("--seeds", default=seeds)
+    p.add_argument("--jobs", type=int, default=2)
+    p.add_argument("--write-doc", action="store_true", help=f"replace the {block} block of docs/renderer.md")
+    a = p.parse_args(argv)
+    a.seeds = [int(s) for s in a.seeds.split(",")]
+    return a
+
+
 def run(a, shader_dir, out):
     baseline = f"burley-{a.spp_budget}"
     cmd = [os.path.join(a.build, "bin", "emcv-demo"), "--scene", a.scene, "--size", a.size, "--frames",

@@ -20,7 +20,6 @@ light change ("30 after"); cv-notex's resolved PSNR over all frames.
 Usage: /usr/bin/python3 scripts/eval/notex_change.py [--build build] [--seeds 1] [--jobs 2] [--write-doc]
 With --write-doc the table replaces the GENERATED block "notex-change" of docs/renderer.md.
 """
-import argparse
 import csv
 import os
 import subprocess
@@ -28,7 +27,7 @@ import sys
 import tempfile
 from concurrent.futures import ThreadPoolExecutor
 
-from adaptive_overhead import make_variant
+from adaptive_overhead import make_variant, variant_study_arguments
 from run_eval import publish_table
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -67,13 +66,8 @@ def mean(values):
 
 
 def main(argv):
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("--build", default=os.path.join(ROOT, "build"))
-    p.add_argument("--seeds", default="1")
-    p.add_argument("--jobs", type=int, default=2)
-    p.add_argument("--write-doc", action="store_true", help="replace the notex-change block of docs/renderer.md")
-    a = p.parse_args(argv)
-    seeds = [int(s) for s in a.seeds.split(",")]
+    a = variant_study_arguments(argv, __doc__, "1", "notex-change")
+    seeds = a.seeds
     with tempfile.TemporaryDirectory() as tmp:
         built, plain = make_variant(None, []), make_variant(os.path.join(tmp, "plain"), PLAIN_PUSH)
         jobs = [(k, budget, seed, variant) for k in range(len(CASES)) for budget in BUDGETS for seed in seeds

@@ -46,7 +46,6 @@ not read the adaptive shaders and runs once per scene, budget and seed.
 Usage: /usr/bin/python3 scripts/eval/stale_allocation.py [--build build] [--seeds 1,2] [--write-doc]
 With --write-doc the table replaces the GENERATED block "stale-allocation" of docs/renderer.md.
 """
-import argparse
 import csv
 import os
 import subprocess
@@ -54,7 +53,7 @@ import sys
 import tempfile
 from concurrent.futures import ThreadPoolExecutor
 
-from adaptive_overhead import make_variant
+from adaptive_overhead import make_variant, variant_study_arguments
 from run_eval import publish_table
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -151,13 +150,8 @@ def run(build, dirs, scene, frames, budget, seed, method, out):
 
 
 def main(argv):
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("--build", default=os.path.join(ROOT, "build"))
-    p.add_argument("--seeds", default="1,2")
-    p.add_argument("--jobs", type=int, default=2)
-    p.add_argument("--write-doc", action="store_true", help="replace the stale-allocation block of docs/renderer.md")
-    a = p.parse_args(argv)
-    seeds = [int(s) for s in a.seeds.split(",")]
+    a = variant_study_arguments(argv, __doc__, "1,2", "stale-allocation")
+    seeds = a.seeds
     with tempfile.TemporaryDirectory() as tmp:
         dirs = {name: (make_variant(os.path.join(tmp, f"v{i}"), shaders),
                        make_variant(os.path.join(tmp, f"i{i}"), includes, "include"))
