@@ -95,7 +95,6 @@ def main(argv):
                                  for s in seeds])
                 burley, spvg = psnr("built", f"burley-{budget}", 0), psnr("built", "spvg", 0)
                 raw_plain, raw_built = psnr("plain", "cv-notex", 0), psnr("built", "cv-notex", 0)
-                resolved = ""
                 if window == "all":
                     res_plain, res_built = psnr("plain", "cv-notex", 1), psnr("built", "cv-notex", 1)
                     resolved = f"{res_plain:.2f} | {res_built:.2f} | {res_built - res_plain:+.2f}"

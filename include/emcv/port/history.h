@@ -304,6 +304,19 @@ EMCV_FN uint emcv_history_count_for_frames(uint count, float eta, float frames) 
     return lo;
 }
 
+/// The change test of cv's and cv-notex's push: a residual move e of a frame of n samples beyond 5 sigma
+/// (n e^2 > 25 sigma^2, Chebyshev's bound) is a change, not noise; true then, with `weight` the batch size it
+/// enters with, that of a 5-sigma move (25 sigma^2 / e^2 < n). sigma^2 is the history's per-sample variance
+/// (> 0, a history as old as its memory: the caller's test).
+EMCV_FN bool emcv_history_change_weight(float e, float n, float sigma2, EMCV_OUT(float) weight) {
+    EMCV_PRECISE float z2 = n * e * e;
+    weight = n;
+    if (!(z2 > emcv_history_change_z2() * sigma2)) return false;
+    EMCV_PRECISE float clipped = emcv_history_change_z2() * sigma2 / (e * e);
+    weight = clipped;
+    return true;
+}
+
 /// cv's update: f and G, the means of this frame's n samples, into the EMCM as a batch (supp. Eq. 21, 25-27).
 /// Once the history is as old as its memory (1 / eta frames, so that sigma^2 is an estimate worth testing
 /// against), a residual move e = (f - mu_f) - alpha (g - mu_G) with the predicted alpha beyond 5 sigma
@@ -322,9 +335,8 @@ EMCV_FN bool emcv_history_push_cv(EMCV_INOUT(EmcvEmcm2) s, float f, float g, flo
     bool mature = float(s.count) * eta >= 1.0f;
     if (mature && sigma2 > 0.0f && emcv_emcm2_valid(s) && emcv_is_finite(f) && emcv_is_finite(g)) {
         EMCV_PRECISE float e = (f - s.mean.x) - emcv_history_predicted_alpha(s) * (g - s.mean.y);
-        EMCV_PRECISE float z2 = n * e * e;
-        if (z2 > emcv_history_change_z2() * sigma2) {
-            EMCV_PRECISE float weight = emcv_history_change_z2() * sigma2 / (e * e);
+        float weight;
+        if (emcv_history_change_weight(e, n, sigma2, weight)) {
             emcv_emcm2_push_batch(s, vec2(f, g), eta, weight);
             s.mean = vec2(f, g);
             return true;
@@ -357,9 +369,8 @@ EMCV_FN bool emcv_history_push_notex(EMCV_INOUT(EmcvMovingStats) s, float f, flo
     bool mature = float(s.count) * eta >= 1.0f;
     if (mature && sigma2 > 0.0f && emcv_moving_stats_valid(s) && emcv_is_finite(r)) {
         EMCV_PRECISE float e = r - s.mean;
-        EMCV_PRECISE float z2 = n * e * e;
-        if (z2 > emcv_history_change_z2() * sigma2) {
-            EMCV_PRECISE float weight = emcv_history_change_z2() * sigma2 / (e * e);
+        float weight;
+        if (emcv_history_change_weight(e, n, sigma2, weight)) {
             emcv_moving_stats_push_batch(s, r, eta, weight);
             s.mean = r;
             return true;
