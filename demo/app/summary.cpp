@@ -90,10 +90,11 @@ std::vector<method_summary> summarize(const std::vector<metrics_row>& rows, cons
 }
 
 std::optional<std::string> compare_after_change(const std::vector<metrics_row>& rows, int first_change,
-                                                const std::string& name, const std::string& baseline, int window) {
+                                                const std::string& name, const std::string& baseline, int window,
+                                                int timing_from_frame) {
     struct window_means {
-        int frames = 0;
-        double spp = 0.0, sss_ms = 0.0;
+        int frames = 0, timed_frames = 0;
+        double spp = 0.0, sss_ms = 0.0, all_sss_ms = 0.0;
         std::vector<std::optional<double>> psnr, psnr_resolved;
     };
     const int end = window > 0 ? first_change + window : std::numeric_limits<int>::max();
@@ -103,14 +104,22 @@ std::optional<std::string> compare_after_change(const std::vector<metrics_row>& 
             if (r.method != method || r.frame < first_change || r.frame >= end) continue;
             ++m.frames;
             m.spp += r.mean_spp;
-            m.sss_ms += r.sss_ms;
+            m.all_sss_ms += r.sss_ms;
+            if (r.frame >= timing_from_frame) {
+                ++m.timed_frames;
+                m.sss_ms += r.sss_ms;
+            }
             m.psnr.push_back(r.psnr_db);
             m.psnr_resolved.push_back(r.psnr_resolved_db);
         }
+        // As summarize: over every frame of the window when none is late enough (a one-frame run).
+        if (m.timed_frames == 0) m.timed_frames = m.frames, m.sss_ms = m.all_sss_ms;
         return m;
     };
     const window_means base = means_of(baseline), cand = means_of(name);
     if (base.frames == 0 || cand.frames == 0) return std::nullopt;
+    // The warm-up frames the time ratio leaves out (the table's times leave them out too).
+    const bool warm_up_left_out = cand.timed_frames < cand.frames || base.timed_frames < base.frames;
     int last = first_change;
     for (const metrics_row& r : rows)
         if (r.method == name && r.frame >= first_change && r.frame < end) last = std::max(last, r.frame);
@@ -136,11 +145,14 @@ std::optional<std::string> compare_after_change(const std::vector<metrics_row>& 
     else
         std::snprintf(span, sizeof span, "frames %d-%d (every frame)", first_change, last);
     char line[400];
-    std::snprintf(line, sizeof line, "%s vs %s, %s: samples %s, SSS pass time %s, PSNR %s (%s %s, %s %s)",
+    char time_span[48] = "";
+    if (warm_up_left_out) std::snprintf(time_span, sizeof time_span, " (from frame %d)", timing_from_frame);
+    std::snprintf(line, sizeof line, "%s vs %s, %s: samples %s, SSS pass time %s%s, PSNR %s (%s %s, %s %s)",
                   name.c_str(), baseline.c_str(), span,
                   ratio(cand.spp / cand.frames, base.spp / base.frames).c_str(),
-                  ratio(cand.sss_ms / cand.frames, base.sss_ms / base.frames).c_str(), gap.c_str(), name.c_str(),
-                  psnr_text(db_name).c_str(), baseline.c_str(), psnr_text(db_baseline).c_str());
+                  ratio(cand.sss_ms / cand.timed_frames, base.sss_ms / base.timed_frames).c_str(), time_span,
+                  gap.c_str(), name.c_str(), psnr_text(db_name).c_str(), baseline.c_str(),
+                  psnr_text(db_baseline).c_str());
     std::string out(line);
     const std::optional<double> resolved_name = mean_psnr(cand.psnr_resolved),
                                 resolved_baseline = mean_psnr(base.psnr_resolved);

@@ -79,3 +79,24 @@ TEST_CASE("no cv vs spvg line without both methods or without frames after the c
         if (r.method != "cv") without_cv.push_back(r);
     CHECK_FALSE(app::compare_after_change(without_cv, 20, "cv", "spvg"));
 }
+
+TEST_CASE("the every-frame line leaves the warm-up frame out of the time ratio, as the table does", "[app][summary]") {
+    // Frame 0 compiles and first touches the driver's resources: here cv's costs 1000 ms. From frame 1 on cv takes
+    // 1 ms on frames 1-19, 2 ms on 20-49 and 100 ms on 50-59 (1079 ms), spvg 1 ms on 1-19 and 4 ms on 20-59
+    // (179 ms): 6.028x. With frame 0 the ratio would be 2079 / 180 = 11.55x.
+    std::vector<app::metrics_row> rows = rows_with_change(20, 60);
+    for (app::metrics_row& r : rows)
+        if (r.method == "cv" && r.frame == 0) r.sss_ms = 1000.0;
+    const std::optional<std::string> line = app::compare_after_change(rows, 0, "cv", "spvg", 0);
+    REQUIRE(line);
+    INFO(*line);
+    CHECK(line->find("frames 0-59 (every frame)") != std::string::npos);
+    CHECK(line->find("SSS pass time 6.028x (from frame 1)") != std::string::npos);
+    // Samples still over every frame, frame 0 included: cv 20 x 8 + 30 x 10 + 10 x 1000, spvg 20 x 8 + 40 x 40.
+    CHECK(line->find("samples 5.943x") != std::string::npos);
+    // A window that starts after the warm-up leaves nothing out and says nothing of it.
+    const std::optional<std::string> after = app::compare_after_change(rows, 20, "cv", "spvg");
+    REQUIRE(after);
+    CHECK(after->find("from frame") == std::string::npos);
+    CHECK(after->find("SSS pass time 0.500x,") != std::string::npos);
+}
