@@ -1140,7 +1140,7 @@ def provenance(jobs, raw_dir):
     for name in sorted(os.listdir(raw_dir)):
         if name.startswith("run-") and name.endswith(".txt"):
             with open(os.path.join(raw_dir, name)) as f:
-                runs.append(f.read().strip())
+                runs.extend(line for line in f.read().splitlines() if line.strip())  # a resumed run adds a line
     return commits, devices, runs
 
 
@@ -1334,6 +1334,20 @@ def run_file_name(shard, stages, raw_dir, resume):
     return f"run-{shard}-stages-{'+'.join(stages)}.txt"
 
 
+def write_run_record(raw_dir, shard, stages, resume, line):
+    """Records a run (one line) in its file (run_file_name). A resumed run made only the raw files that were
+    missing, so the runs that made the others stay on record, its line after theirs; any other run replaces the
+    record. The context block lists every line (provenance)."""
+    record = os.path.join(raw_dir, run_file_name(shard, stages, raw_dir, resume))
+    earlier = ""
+    if resume and os.path.exists(record):
+        with open(record) as f:
+            earlier = f.read()
+        if earlier and not earlier.endswith("\n"):
+            earlier += "\n"
+    write_atomically(record, earlier + line + "\n")
+
+
 def main(argv):
     a = parse_args(argv)
     if a.check_determinism:
@@ -1353,10 +1367,10 @@ def main(argv):
         selected, wall = render(a, jobs, raw_dir, a.jobs)
         shard = "all" if a.shard is None else f"{a.shard[0]}-of-{a.shard[1]}"
         load = " ".join(f"{x:.1f}" for x in os.getloadavg())
-        write_atomically(os.path.join(raw_dir, run_file_name(shard, a.stages, raw_dir, a.resume)),
+        write_run_record(raw_dir, shard, a.stages, a.resume,
                          f"`{' '.join(['/usr/bin/python3 scripts/eval/run_eval.py'] + argv)}`: shard {shard}, "
                          f"{len(selected)} jobs, --jobs {a.jobs}, {wall / 60:.1f} min, load {load} on "
-                         f"{os.cpu_count()} CPUs\n")
+                         f"{os.cpu_count()} CPUs")
         if a.shard is not None and missing_jobs(jobs, raw_dir):
             print(f"run_eval.py: shard {a.shard[0]}/{a.shard[1]} done; once every shard's raw files are in "
                   f"{shown(raw_dir)}, assemble with --merge")

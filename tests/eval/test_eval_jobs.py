@@ -5,7 +5,8 @@
   - bad --jobs / --shard values are refused with a message naming the option;
   - --merge over a raw folder that lacks jobs refuses and names them;
   - a run of some stages records itself under a name of its own (the record of the run that made the other
-    stages' raw files stays, for the context block), and a later run of every stage removes those records;
+    stages' raw files stays, for the context block), and a later run of every stage removes those records; a
+    --resume run adds its line after the record of the run that made the other raw files;
   - --check-determinism: the --quick quality jobs run with --jobs 1 and with --jobs 2 into two raw folders give
     byte-identical quality tables (PSNR raw and resolved, samples, lag).
 
@@ -53,6 +54,15 @@ def check_run_records():
               os.path.exists(os.path.join(raw, timing)), "a --resume run of every stage keeps the stage records")
         run_eval.run_file_name("all", every, raw, False)
         check(not os.path.exists(os.path.join(raw, timing)), "a run of every stage removes the stage records")
+    with tempfile.TemporaryDirectory() as raw:
+        run_eval.write_run_record(raw, "all", every, False, "first run")
+        run_eval.write_run_record(raw, "all", every, True, "resumed run")
+        runs = run_eval.provenance([], raw)[2]
+        check(runs == ["first run", "resumed run"],
+              f"a --resume run's record follows the record of the run that made the other raw files (got {runs})")
+        run_eval.write_run_record(raw, "all", every, False, "new run")
+        runs = run_eval.provenance([], raw)[2]
+        check(runs == ["new run"], f"a run that is not resumed replaces the record (got {runs})")
 
 
 def main(build):

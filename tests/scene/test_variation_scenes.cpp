@@ -205,3 +205,77 @@ TEST_CASE("the tabletop validation scene is mixed with its key light switching o
         CHECK(named(s, "key").intensity.at(f) == v);
     }
 }
+
+TEST_CASE("the validation scenes added after the parameters were chosen keep what their descriptions promise") {
+    // demo/scenes/validation/{cow-orbit, wax-steps, jade-sinus}: other meshes, materials, scales and events than
+    // any scene a parameter was chosen on. Each is pinned to its event (every frame of each light's curve) and its
+    // camera, so that a light one frame off or a camera that stops moving fails.
+    const auto dir = source_dir() / "demo" / "scenes" / "validation";
+    const auto names = builtin_scene_names();
+    auto load_checked = [&](const std::string& name, int frames) {
+        INFO(name);
+        const scene s = load_scene(dir / (name + ".json"));
+        CHECK(s.name == name);
+        CHECK(!s.description.empty());
+        CHECK(s.frames == frames);
+        std::ifstream in(dir / (name + ".json"));
+        CHECK(nlohmann::json::parse(in).value("$schema", "") == "../scene.schema.json");
+        CHECK(std::find(names.begin(), names.end(), name) == names.end());
+        return s;
+    };
+    auto sss_materials = [](const scene& s) {
+        return std::count_if(s.materials.begin(), s.materials.end(),
+                             [](const material& m) { return m.type == material::kind::sss; });
+    };
+
+    SECTION("cow-orbit: still lights, a textured SSS material, the camera orbiting by 20 degrees") {
+        const scene s = load_checked("cow-orbit", 60);
+        CHECK(s.mm_per_unit == 120.0f);
+        CHECK(sss_materials(s) == 1);
+        CHECK(s.materials.size() == 2u);
+        const auto textured = std::find_if(s.materials.begin(), s.materials.end(),
+                                           [](const material& m) { return m.albedo_texture >= 0; });
+        REQUIRE(textured != s.materials.end());
+        CHECK(textured->type == material::kind::sss);
+        REQUIRE(s.lights.size() == 2u);
+        for (const light& l : s.lights) CHECK(l.intensity.is_constant());
+        CHECK(named(s, "key").casts_shadow);
+        CHECK_FALSE(s.view.is_static());
+        const auto [first_eye, first_target] = s.view.at(0);
+        const auto [last_eye, last_target] = s.view.at(s.frames - 1);
+        CHECK(first_target == last_target);
+        CHECK(first_eye.y == last_eye.y);
+        const glm::vec2 a = glm::vec2(first_eye.x, first_eye.z) - glm::vec2(first_target.x, first_target.z);
+        const glm::vec2 b = glm::vec2(last_eye.x, last_eye.z) - glm::vec2(last_target.x, last_target.z);
+        CHECK(std::fabs(glm::degrees(std::acos(glm::dot(glm::normalize(a), glm::normalize(b)))) - 20.0f) < 0.1f);
+        CHECK(std::fabs(glm::length(a) - glm::length(b)) < 1e-3f);
+    }
+
+    SECTION("wax-steps: a wide wax kernel under a key that steps down, up and off, 20 frames apart") {
+        const scene s = load_checked("wax-steps", 80);
+        REQUIRE(s.materials.size() == 1u);
+        CHECK(s.materials[0].mean_free_path_mm == glm::vec3(6.0f, 5.0f, 4.0f));
+        CHECK(s.view.is_static());
+        REQUIRE(s.lights.size() == 2u);
+        CHECK(named(s, "fill").intensity.is_constant());
+        CHECK(named(s, "key").casts_shadow);
+        for (const auto& [f, v] : held(80, {{0, 1.5f}, {20, 0.3f}, {40, 1.5f}, {60, 0.0f}})) {
+            INFO("frame " << f);
+            CHECK(named(s, "key").intensity.at(f) == v);
+        }
+    }
+
+    SECTION("jade-sinus: two SSS materials, a steady key and a light on a 40-frame sinusoid from 0 to 4") {
+        const scene s = load_checked("jade-sinus", 60);
+        CHECK(sss_materials(s) == 2);
+        CHECK(s.view.is_static());
+        REQUIRE(s.lights.size() == 2u);
+        CHECK(named(s, "key").intensity.is_constant());
+        CHECK(named(s, "key").casts_shadow);
+        for (int f = 0; f < s.frames; ++f) {
+            INFO("frame " << f);
+            const double expected = 2.0 + 2.0 * std::sin(2.0 * 3.14159265358979 * f / 40.0);
+            CHECK(std::fabs(named(s, "party").intensity.at(f) - expected) < 1e-5);
+        }
+    }
+}
