@@ -62,21 +62,23 @@ def gain(resolved, raw):
     return f"{resolved:.2f} ({resolved - raw:+.2f})"
 
 
-def run(build, size, shader_dir, defines, out):
-    cmd = [os.path.join(build, "bin", "emcv-demo"), "--scene", "moving", "--method", ",".join(METHODS), "--size",
-           size, "--frames", str(FRAMES), "--resolve", "taa", "--no-frames", "--out", out]
+def run(build, size, shader_dir, defines, out, scene="moving", methods=METHODS, frames=FRAMES, first=FIRST):
+    """emcv-demo on `scene` with the shaders of `shader_dir`: per method, its mean raw and resolved PSNR over the
+    frames from `first` on (resolve_floor.py runs it on its own scenes)."""
+    cmd = [os.path.join(build, "bin", "emcv-demo"), "--scene", scene, "--method", ",".join(methods), "--size",
+           size, "--frames", str(frames), "--resolve", "taa", "--no-frames", "--out", out]
     for d in defines:
         cmd += ["--define", d]
     done = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, EMCV_SHADER_DIR=shader_dir))
     if done.returncode != 0:
         sys.exit("resolve_motion: %s failed:\n%s" % (" ".join(cmd), done.stderr))
     with open(os.path.join(out, "metrics.csv")) as f:
-        rows = [r for r in csv.DictReader(f) if int(r["frame"]) >= FIRST]
+        rows = [r for r in csv.DictReader(f) if int(r["frame"]) >= first]
     result = {}
-    for m in METHODS:
+    for m in methods:
         own = [r for r in rows if r["method"] == m]
-        if len(own) != FRAMES - FIRST:
-            sys.exit(f"resolve_motion: {m} has {len(own)} frames from {FIRST} on, not {FRAMES - FIRST}")
+        if len(own) != frames - first:
+            sys.exit(f"resolve_motion: {m} has {len(own)} frames from {first} on, not {frames - first}")
         raw = [float(r["psnr_db"]) for r in own]
         resolved = [float(r["psnr_resolved_db"]) for r in own]
         if not all(math.isfinite(v) for v in raw + resolved):
