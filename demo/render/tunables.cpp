@@ -36,6 +36,9 @@ const std::vector<tunable>& tunables() {
          "temporal resolve: noise box half-width in std devs of the frame's noise", EMCV_RESOLVE_NOISE_SIGMA},
         {"EMCV_RESOLVE_GUIDE", t::integer, 0, 1, false, "temporal resolve: 1 moves the history by the guide's change",
          EMCV_RESOLVE_GUIDE},
+        {"EMCV_RESOLVE_GUIDE_TAPS", t::integer, 0, 64, false,
+         "temporal resolve: taps of the guide's fixed estimate of the scattered light (0: the unscattered light)",
+         EMCV_RESOLVE_GUIDE_TAPS},
     };
     return all;
 }

@@ -3,24 +3,28 @@
 it costs (docs/frame.md, "Temporal resolve", step 2).
 
 The resolve moves its reprojected history by slope (guide - guide_history) (include/emcv/port/resolve.h,
-emcv_resolve_guided_history): the guide is the unscattered diffuse light times the albedo in display YCoCg,
-`guide_history` last frame's guide resampled with the history's own weights, and the slope the least-squares
-slope of the current values on the guide over the pixel's 3x3 neighbourhood (emcv_resolve_guide_slope). The same
-binary runs with the guide (as built) and without it (`--define EMCV_RESOLVE_GUIDE=0`). Two tables:
+emcv_resolve_guided_history): the guide is, at a scattering pixel, a fixed Burley estimate of the scattered light
+(EMCV_RESOLVE_GUIDE_TAPS taps at one rotation, the same every frame) times the albedo in display YCoCg, and
+elsewhere the resolved value; `guide_history` is last frame's guide resampled with the history's own weights, and
+the slope the least-squares slope of the current values on the guide over the pixel's 3x3 neighbourhood
+(emcv_resolve_guide_slope). The same binary runs with the guide (as built), with the guide of the unscattered
+light (the albedo times the lighting pass's diffuse light, `--define EMCV_RESOLVE_GUIDE_TAPS=0`, the guide until
+the taps were added) and without a guide (`--define EMCV_RESOLVE_GUIDE=0`). Two tables:
 
-  effect  resolve_table.py's columns for both, and for the guide without the weight its change asks of the blend
-          (emcv_resolve_guide_weight; a copy of this tree's shaders with that one line taken out, read through
-          EMCV_SHADER_DIR: the script refuses when the line is no longer in the shader) (PSNR of the whole frame, mean over frames 20 up to the scene's
-          first light change, "before", and over the 30 frames from it, "after"; lag: frames after the change
-          until the resolved PSNR stays within 1 dB of its settled value), 96x96, the adaptive methods at a budget
-          of 8, on the scenes of docs/frame.md's resolve table: still cameras (`static`, light-off, the burst, the
-          fade, the skin close-up, the tabletop), moving ones (`moving`, the camera move during the switch, the
-          skin orbit). The stochastic methods only: nothing in diffuse's and separable's frames is sampled, so the
-          noise box closes on the current value (to within half an 8-bit step, emcv_resolve_clip's floor: there the
-          guide moves their resolved images by hundredths of a dB under a moving camera).
-  cost    the resolve pass's time (wall clock, llvmpipe: work, not GPU time) with and without the guide,
-          `burley-8` at 256x256 on `static` (a still camera: one history texel per pixel) and on `moving` (16),
-          5 rounds alternating the two, the pass's median over frames 4-29, the median round.
+  effect  resolve_table.py's columns for the three, and for the guide without the weight its change asks of the
+          blend (emcv_resolve_guide_weight; a copy of this tree's shaders with that one line taken out, read
+          through EMCV_SHADER_DIR: the script refuses when the line is no longer in the shader) (PSNR of the whole
+          frame, mean over frames 20 up to the scene's first light change, "before", and over the 30 frames from
+          it, "after"; lag: frames after the change until the resolved PSNR stays within 1 dB of its settled
+          value), 96x96, the adaptive methods at a budget of 8, on the scenes of docs/frame.md's resolve table:
+          still cameras (`static`, light-off, the burst, the fade, the skin close-up, the tabletop), moving ones
+          (`moving`, the camera move during the switch, the skin orbit). The stochastic methods only: nothing in
+          diffuse's and separable's frames is sampled, so the noise box closes on the current value (to within
+          half an 8-bit step, emcv_resolve_clip's floor: there the guide moves their resolved images by hundredths
+          of a dB under a moving camera).
+  cost    the resolve pass's time (wall clock, llvmpipe: work, not GPU time) without a guide, with the unscattered
+          guide and as built, `burley-8` at 256x256 on `static` (a still camera: one history texel per pixel) and
+          on `moving` (16), 5 rounds alternating the order, the pass's median over frames 4-29, the median round.
 
     /usr/bin/python3 scripts/eval/resolve_guide.py [--build build] [--write-doc]
 
@@ -42,6 +46,9 @@ from run_eval import git_commit, replace_block, write_atomically
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 DOC = os.path.join(ROOT, "docs", "frame.md")
 NO_GUIDE = "EMCV_RESOLVE_GUIDE=0"
+# The guide of the unscattered light (the albedo times the lighting pass's diffuse) instead of the fixed estimate
+# of the scattered light (EMCV_RESOLVE_GUIDE_TAPS taps, include/emcv/port/resolve.h).
+UNSCATTERED_GUIDE = "EMCV_RESOLVE_GUIDE_TAPS=0"
 # The guide without its weight: the line that takes up this frame at emcv_resolve_guide_weight, taken out.
 NO_GUIDE_WEIGHT = [("render/resolve.comp.glsl", "        if (noise_box) weight = max(weight, guide_weight);\n", "")]
 SCENES = ["static", "light-off", "demo/scenes/variations/burst-3.json", "demo/scenes/variations/fade.json",
@@ -60,30 +67,34 @@ def cell(value, digits=2, sign=False):
 
 
 def effect_table(build, tmp):
-    lines = ["| scene | method | raw before | resolved before: no guide | guide, no weight | guide | gain | raw after | "
-             "resolved after: no guide | guide, no weight | guide | gain | lag: no guide | guide |",
-             "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    lines = ["| scene | method | raw before | resolved before: no guide | unscattered guide | guide, no weight | guide | "
+             "gain | raw after | resolved after: no guide | unscattered guide | guide, no weight | guide | gain | "
+             "lag: no guide | unscattered | guide |",
+             "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     unweighted_dir = make_variant(os.path.join(tmp, "no-guide-weight"), NO_GUIDE_WEIGHT)
     for scene in SCENES:
         name = os.path.splitext(os.path.basename(scene))[0]
         guided, change = run_scene(build, scene, METHODS, "96x96", BUDGET, os.path.join(tmp, f"guide-{name}"))
         unguided, change_unguided = run_scene(build, scene, METHODS, "96x96", BUDGET,
                                               os.path.join(tmp, f"no-guide-{name}"), [NO_GUIDE])
+        unscattered, change_unscattered = run_scene(build, scene, METHODS, "96x96", BUDGET,
+                                                    os.path.join(tmp, f"unscattered-{name}"), [UNSCATTERED_GUIDE])
         unweighted, change_unweighted = run_scene(build, scene, METHODS, "96x96", BUDGET,
                                                   os.path.join(tmp, f"no-weight-{name}"), shader_dir=unweighted_dir)
-        if not change == change_unguided == change_unweighted:
+        if not change == change_unguided == change_unscattered == change_unweighted:
             sys.exit(f"resolve_guide.py: {scene}: the light change moved with the guide "
-                     f"({change_unguided}, {change_unweighted} -> {change})")
+                     f"({change_unguided}, {change_unscattered}, {change_unweighted} -> {change})")
         for m in METHODS:
-            if not any(r["method"] == m for r in guided + unguided + unweighted):
+            if not any(r["method"] == m for r in guided + unguided + unscattered + unweighted):
                 sys.exit(f"resolve_guide.py: no rows of {m} on {scene}")
-            g, u, w = summary(guided, change, m), summary(unguided, change, m), summary(unweighted, change, m)
-            gain_before = None if g[1] is None or u[1] is None else g[1] - u[1]
-            gain_after = None if g[3] is None or u[3] is None else g[3] - u[3]
-            lines.append("| " + " | ".join([name, m, cell(g[0]), cell(u[1]), cell(w[1]), cell(g[1]),
-                                            cell(gain_before, sign=True), cell(g[2]), cell(u[3]), cell(w[3]),
-                                            cell(g[3]), cell(gain_after, sign=True),
+            g, u, s, w = (summary(rows, change, m) for rows in (guided, unguided, unscattered, unweighted))
+            gain_before = None if g[1] is None or s[1] is None else g[1] - s[1]
+            gain_after = None if g[3] is None or s[3] is None else g[3] - s[3]
+            lines.append("| " + " | ".join([name, m, cell(g[0]), cell(u[1]), cell(s[1]), cell(w[1]), cell(g[1]),
+                                            cell(gain_before, sign=True), cell(g[2]), cell(u[3]), cell(s[3]),
+                                            cell(w[3]), cell(g[3]), cell(gain_after, sign=True),
                                             "-" if u[4] is None else str(u[4]),
+                                            "-" if s[4] is None else str(s[4]),
                                             "-" if g[4] is None else str(g[4])]) + " |")
             print(lines[-1], flush=True)
     return "\n".join(lines)
@@ -108,16 +119,18 @@ def resolve_median(build, scene, defines, out):
 
 
 def cost_table(build, tmp):
-    lines = ["| scene | camera | resolve without the guide (ms) | with it (ms) | with / without |", "|---|---|---:|---:|---:|"]
+    lines = ["| scene | camera | resolve without the guide (ms) | unscattered guide (ms) | guide (ms) | "
+             "unscattered / without | guide / without |", "|---|---|---:|---:|---:|---:|---:|"]
     for scene in COST_SCENES:
-        rounds = {"without": [], "with": []}
+        variants = [("without", [NO_GUIDE]), ("unscattered", [UNSCATTERED_GUIDE]), ("with", [])]
+        rounds = {name: [] for name, _ in variants}
         for k in range(COST_ROUNDS):
-            order = [("without", [NO_GUIDE]), ("with", [])]
-            for name, defines in (order if k % 2 == 0 else reversed(order)):
+            for name, defines in (variants if k % 2 == 0 else list(reversed(variants))):
                 rounds[name].append(resolve_median(build, scene, defines, os.path.join(tmp, f"cost-{scene}-{name}-{k}")))
-        without, with_guide = statistics.median(rounds["without"]), statistics.median(rounds["with"])
+        without, unscattered, with_guide = (statistics.median(rounds[n]) for n in ("without", "unscattered", "with"))
         camera = "moving" if scene == "moving" else "still"
-        lines.append(f"| {scene} | {camera} | {without:.3f} | {with_guide:.3f} | {with_guide / without:.2f} |")
+        lines.append(f"| {scene} | {camera} | {without:.3f} | {unscattered:.3f} | {with_guide:.3f} | "
+                     f"{unscattered / without:.2f} | {with_guide / without:.2f} |")
         print(lines[-1], flush=True)
     return "\n".join(lines)
 
@@ -133,8 +146,10 @@ def main():
         cost = cost_table(a.build, tmp)
     command = "`/usr/bin/python3 scripts/eval/resolve_guide.py --write-doc`"
     effect_body = "\n".join([f"Regenerated by {command}, {made}. PSNR (dB, whole frame), 96x96, the adaptive methods "
-                             f"at a budget of {BUDGET}; guide, no weight: the guide without the weight its change asks of the "
-                             "blend (emcv_resolve_guide_weight); gain: with the guide as built less without.", "", effect])
+                             f"at a budget of {BUDGET}; unscattered guide: the guide of the unscattered light "
+                             f"(`--define {UNSCATTERED_GUIDE}`); guide, no weight: the guide as built without the weight "
+                             "its change asks of the blend (emcv_resolve_guide_weight); guide: as built (the fixed "
+                             "estimate of the scattered light); gain: as built less the unscattered guide.", "", effect])
     cost_body = "\n".join([f"Regenerated by {command}, {made}. Wall clock on llvmpipe (work, not GPU time), "
                            f"burley-{BUDGET} at 256x256, median over frames 4-29, the median of {COST_ROUNDS} "
                            "alternating rounds.", "", cost])

@@ -1,31 +1,32 @@
 // SPDX-License-Identifier: MIT
-// resolve: the temporal resolve after the composite (--resolve taa; docs/frame.md, "Temporal resolve"). It works
-// on display values (after the tonemap and the sRGB encoding, before the 8-bit store), where a colour's error is
-// what PSNR and a viewer see and where every value is bounded, so that one bright sample cannot hold the clip box
-// open. Without jitter it filters the scattered light alone and adds the specular light back after
-// (resolved_part). Per pixel: the current value and its 3x3 neighbourhood (one shared-memory tile with a one-pixel
-// apron); last frame's resolved value at the reprojected position (motion vectors; Catmull-Rom over the 4x4 texels
-// around it, as engines sample their history so that resampling it every frame does not blur it, each texel only
-// where its stored view depth shows this surface, emcv_resolve_same_surface; less than half of the kernel's weight
-// there: reset to the current value), clipped to the neighbourhood's box in YCoCg towards the current value
-// filtered over its 3x3 neighbours (emcv_resolve_filter_weight) with the detail the history's own 3x3
-// neighbourhood shows put back (emcv_resolve_target), and blended (include/emcv/port/resolve.h). Without jitter
-// the box is first narrowed to this frame's own noise, which the SSS pass stores beside its estimate
-// (emcv_resolve_narrow_to_noise): a history is kept only as far from this frame as its noise could take it, and
-// a pixel nothing sampled shows this frame's value; where that noise is unknown the neighbourhood's box comes
-// from the neighbours on the pixel's own surface (same_surface_moments). Without jitter the reprojected history
-// is first moved by the change of a noise-free guide (the unscattered diffuse light times the albedo), resampled
-// exactly as the history was, as far as the pixel's neighbourhood follows the guide's detail
-// (emcv_resolve_guided_history): what resampling and a changing light did to the history, the guide shows
-// without noise; where the guide changed by much of its 3x3 spread, the slope's noise makes that move uncertain,
-// and the blend takes up this frame at the weight that uncertainty asks (emcv_resolve_guide_weight). The history
-// keeps the resolved value and the pixel's view depth (0 for the background, which is never blended: it does not
-// change), the guide texture this frame's guide.
+// resolve: the temporal resolve after the composite (--resolve taa; docs/frame.md, "Temporal resolve"). It works on
+// display values (after the tonemap and the sRGB encoding, before the 8-bit store), where a colour's error is what
+// PSNR and a viewer see and where every value is bounded, so that one bright sample cannot hold the clip box open.
+// Without jitter it filters the scattered light alone and adds the specular light back after (resolved_part). Per
+// pixel: the current value and its 3x3 neighbourhood (one shared-memory tile with a one-pixel apron); last frame's
+// resolved value at the reprojected position (motion vectors; Catmull-Rom over the 4x4 texels around it, as engines
+// sample their history so that resampling it every frame does not blur it, each texel only where its stored view
+// depth shows this surface, emcv_resolve_same_surface; less than half of the kernel's weight there: reset to the
+// current value), clipped to the neighbourhood's box in YCoCg towards the current value filtered over its 3x3
+// neighbours (emcv_resolve_filter_weight) with the detail the history's own 3x3 neighbourhood shows put back
+// (emcv_resolve_target), and blended (include/emcv/port/resolve.h). Without jitter the box is first narrowed to
+// this frame's own noise, which the SSS pass stores beside its estimate (emcv_resolve_narrow_to_noise): a history
+// is kept only as far from this frame as its noise could take it, and a pixel nothing sampled shows this frame's
+// value; where that noise is unknown the neighbourhood's box comes from the neighbours on the pixel's own surface
+// (same_surface_moments). Without jitter the reprojected history is first moved by the change of a noise-free guide
+// (a fixed-tap Burley estimate of the scattered light times the albedo, guide_scattered), resampled exactly as the
+// history was, as far as the pixel's neighbourhood follows the guide's detail (emcv_resolve_guided_history): what
+// resampling and a changing light did to the history, the guide shows without noise; where the guide changed by
+// much of its 3x3 spread, the slope's noise makes that move uncertain, and the blend takes up this frame at the
+// weight that uncertainty asks (emcv_resolve_guide_weight). The history keeps the resolved value and the pixel's
+// view depth (0 for the background, which is never blended: it does not change), the guide texture this frame's
+// guide.
 #version 450 core
 
 #include "emcv/port/resolve.h"
 #include "emcv/port/sss.h"
 #include "emcv/port/tonemap.h"
+#include "render/burley_taps.h"
 #include "render/gbuffer_read.h"
 
 layout(local_size_x = EMCV_RENDER_TILE_SIZE, local_size_y = EMCV_RENDER_TILE_SIZE) in;
@@ -140,16 +141,35 @@ vec3 display_ycocg(vec3 linear) {
     return emcv_rgb_to_ycocg(emcv_display_encode(linear * frame.background.w, int(frame.ambient.w)));
 }
 
+/// The scattered light the guide shows at scattering pixel q (material `code`): a Burley estimate of
+/// EMCV_RESOLVE_GUIDE_TAPS taps at one fixed rotation (render/burley_taps.h, the burley pass's taps), the same taps
+/// every frame, so that it has no frame-to-frame noise; with no taps, the unscattered light.
+vec3 guide_scattered(ivec2 q, uint code) {
+    vec3 centre = texelFetch(lit_diffuse, q, 0).xyz;
+    if (EMCV_RESOLVE_GUIDE_TAPS == 0) return centre;
+    EmcvBurleyPixel px = emcv_render_burley_pixel(q, code);
+    bool approximate = (frame.counters.w & EMCV_RENDER_FLAG_APPROXIMATE_CDF) != 0u;
+    vec3 sum_w = vec3(0.0f), sum_wl = vec3(0.0f);
+    for (uint i = 0u; i < uint(EMCV_RESOLVE_GUIDE_TAPS); ++i) {
+        vec3 w, l;
+        if (!emcv_render_burley_tap(q, px, i, vec2(0.5f), approximate, w, l)) continue;
+        sum_w += w;
+        sum_wl += w * l;
+    }
+    return emcv_render_burley_estimate(sum_wl, sum_w, centre);
+}
+
 /// The guide at q (clamped to the screen): the resolved part without the SSS pass's sampling, in display YCoCg
-/// (`resolved`: display_ycocg of resolved_part(q)). At a pixel that scatters, the albedo times the lighting
-/// pass's diffuse light, the SSS pass's input, which nothing samples; elsewhere the resolved part itself. Each
+/// (`resolved`: display_ycocg of resolved_part(q)). At a pixel that scatters, the albedo times the scattered light
+/// as a fixed estimate gives it (guide_scattered: no noise from frame to frame); elsewhere the resolved part. Each
 /// value is rounded to binary16 here, so that the guide texture stores it exactly (llvmpipe's binary16 store
 /// truncates; hardware rounds) and a guide that did not change reads back equal to this frame's.
 vec3 guide_part(ivec2 q, vec3 resolved) {
     q = clamp(q, ivec2(0), ivec2(frame.viewport.xy) - 1);
     vec3 guide = resolved;
-    if (emcv_render_scatters(emcv_render_material_code(q)))
-        guide = display_ycocg(texelFetch(gbuffer_albedo, q, 0).xyz * texelFetch(lit_diffuse, q, 0).xyz);
+    uint code = emcv_render_material_code(q);
+    if (emcv_render_scatters(code))
+        guide = display_ycocg(texelFetch(gbuffer_albedo, q, 0).xyz * guide_scattered(q, code));
     return vec3(unpackHalf2x16(packHalf2x16(guide.xy)), unpackHalf2x16(packHalf2x16(vec2(guide.z, 0.0f))).x);
 }
 

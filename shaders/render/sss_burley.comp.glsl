@@ -1,20 +1,21 @@
 // SPDX-License-Identifier: MIT
 // Burley screen-space SSS over the SSS tiles (indirect dispatch): N samples per scattering pixel drawn with the
-// widest channel, weighted per channel, sum(w L) / sum(w) (docs/frame.md). Every formula is from
-// include/emcv/port/sss.h. N is the frame's fixed count (burley-N, reference). Built for an adaptive method
-// (the renderer defines its EMCV_ADAPTIVE_* from the method table, adaptive/history_io.h), the pass takes the
-// pixel's own N and, after its sampling loop, pushes the result into the pixel's history
-// (emcv_adaptive_update_tile): sampling and history update are one dispatch. Under a quality target N needs only
-// the pixel's tile, and the pass plans it itself first (the history reprojected and pooled as in
-// adaptive/samples.h): counting, sampling and update in one dispatch, as many passes as burley-N. In budget mode N
-// comes from the adaptive-samples pass before it, whose last workgroup solved the frame's lambda. Once every
-// pixel's N is known the tile hands its pixels to its threads in order of N (sort_tile_by_count), so that a warp
-// (or a CPU's SIMD batch) loops over pixels of like N instead of waiting on its largest. For cv the tile's noise
-// test runs between sampling and update (adaptive/history_io.h). Where the temporal resolve reads it
+// widest channel, weighted per channel, sum(w L) / sum(w) (docs/frame.md; the taps in render/burley_taps.h, which
+// the resolve's guide shares). Every formula is from include/emcv/port/sss.h. N is the frame's fixed count
+// (burley-N, reference). Built for an adaptive method (the renderer defines its EMCV_ADAPTIVE_* from the method
+// table, adaptive/history_io.h), the pass takes the pixel's own N and, after its sampling loop, pushes the result
+// into the pixel's history (emcv_adaptive_update_tile): sampling and history update are one dispatch. Under a
+// quality target N needs only the pixel's tile, and the pass plans it itself first (the history reprojected and
+// pooled as in adaptive/samples.h): counting, sampling and update in one dispatch, as many passes as burley-N. In
+// budget mode N comes from the adaptive-samples pass before it, whose last workgroup solved the frame's lambda.
+// Once every pixel's N is known the tile hands its pixels to its threads in order of N (sort_tile_by_count), so
+// that a warp (or a CPU's SIMD batch) loops over pixels of like N instead of waiting on its largest. For cv the
+// tile's noise test runs between sampling and update (adaptive/history_io.h). Where the temporal resolve reads it
 // (EMCV_RENDER_FLAG_SSS_NOISE), it stores beside the estimate (alpha) this frame's noise of it, emcv_sss_noise.
 #version 450 core
 
 #include "emcv/port/sss.h"
+#include "render/burley_taps.h"
 #include "render/gbuffer_read.h"
 #include "render/tiles.h"
 #include "emcv/port/bindings.h"
@@ -120,11 +121,7 @@ uint scatter(ivec2 p) {
     uint code = emcv_render_material_code(p);
     if (!emcv_render_scatters(code)) return 0u;
 
-    vec3 d = emcv_sss_shape_distance(materials[code - 1u].mean_free_path.xyz, texelFetch(gbuffer_albedo, p, 0).xyz);
-    float d_sample = emcv_sss_widest(d);
-    float z = emcv_render_depth(p);
-    float mm_per_unit = frame.camera_position.w;
-    float pixels_per_mm = emcv_sss_pixels_per_mm(frame.projection.x, frame.viewport.x, z, mm_per_unit);
+    EmcvBurleyPixel px = emcv_render_burley_pixel(p, code);
     bool approximate = (frame.counters.w & EMCV_RENDER_FLAG_APPROXIMATE_CDF) != 0u;
     vec2 rotation = emcv_sss_rotation(uint(p.x), uint(p.y), frame.counters.x, frame.counters.y);
 #if defined(EMCV_BURLEY_ADAPTIVE)
@@ -139,16 +136,9 @@ uint scatter(ivec2 p) {
     bool keeps_noise = (frame.counters.w & EMCV_RENDER_FLAG_SSS_NOISE) != 0u;
     vec3 sum_w2 = vec3(0.0f), sum_w2l = vec3(0.0f), sum_w2l2 = vec3(0.0f);
     for (uint i = 0u; i < n; ++i) {
-        vec2 u = emcv_sss_sample_uv(i, rotation);
-        float r = emcv_sss_sample_radius(u.x, d_sample, approximate);
-        vec2 offset = emcv_sss_offset_pixels(r, u.y, pixels_per_mm);
-        ivec2 q = ivec2(floor(vec2(p) + 0.5f + offset));
+        vec3 w, l;
         // Off-screen and non-scattering samples get weight 0 (docs/frame.md).
-        float zq = emcv_render_scattering_depth(q);
-        if (zq == 0.0f) continue;
-        float dz_mm = (zq - z) * mm_per_unit;
-        vec3 w = emcv_sss_weight(r, emcv_sss_depth_aware_radius(r, dz_mm), d, d_sample);
-        vec3 l = texelFetch(lit_diffuse, q, 0).xyz;
+        if (!emcv_render_burley_tap(p, px, i, rotation, approximate, w, l)) continue;
         sum_w += w;
         sum_wl += w * l;
         if (keeps_noise) {
@@ -159,8 +149,7 @@ uint scatter(ivec2 p) {
         }
     }
     vec3 centre = texelFetch(lit_diffuse, p, 0).xyz;
-    // A channel with no accepted sample keeps the unscattered value (the pixel's own irradiance).
-    vec3 scattered = mix(centre, sum_wl / max(sum_w, vec3(1e-30f)), greaterThan(sum_w, vec3(0.0f)));
+    vec3 scattered = emcv_render_burley_estimate(sum_wl, sum_w, centre);
     // This frame's noise beside the estimate (its alpha, which the composite does not read): the resolve narrows
     // its clip box to it (docs/frame.md, "Temporal resolve").
     float noise = keeps_noise ? emcv_sss_noise(sum_w, sum_w2, sum_w2l, sum_w2l2, scattered, n) : 1.0f;

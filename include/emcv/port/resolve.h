@@ -13,6 +13,8 @@
 //                                        (0, 4]; default 1
 //            EMCV_RESOLVE_GUIDE ........ 1: the history follows the change of a noise-free guide
 //                                        (emcv_resolve_guided_history), 0: off; default 1
+//            EMCV_RESOLVE_GUIDE_TAPS ... taps of the guide's fixed Burley estimate of the scattered light,
+//                                        [0, 64] (0: the unscattered light); default 16
 #ifndef EMCV_PORT_RESOLVE_H
 #define EMCV_PORT_RESOLVE_H
 
@@ -40,6 +42,19 @@
 /// comparisons (docs/frame.md, "The guide"), not a value to tune. Range {0, 1}.
 #ifndef EMCV_RESOLVE_GUIDE
 #define EMCV_RESOLVE_GUIDE 1
+#endif
+
+/// The guide at a scattering pixel: the scattered light as a Burley estimate of this many taps at one fixed
+/// rotation (the same taps every frame, so the estimate carries no noise from frame to frame, only a fixed
+/// quadrature error that follows the image), times the albedo; 0: the unscattered light times the albedo. What
+/// the guide is for is to show how resampling the history and a changing view or light move the scattered light
+/// (emcv_resolve_guided_history): the unscattered light shows sharp shadow edges and relief that the scattered
+/// light has blurred, and not how the screen-space kernel's view of the surface changes as the camera turns.
+/// 16 was chosen on `moving` alone as the smallest count within 0.5 dB of 32 taps for `burley-8`'s resolved image
+/// (4, 8, 16, 32 taps: +5.0, +6.4, +7.6, +8.0 dB over its raw frames; 0 taps +5.2), and is reported on the other
+/// scenes (docs/frame.md, "The guide"). Range [0, 64].
+#ifndef EMCV_RESOLVE_GUIDE_TAPS
+#define EMCV_RESOLVE_GUIDE_TAPS 16
 #endif
 
 EMCV_PORT_BEGIN
