@@ -167,12 +167,14 @@ OUTPUTS = ["docs/results", "docs/results.md", "docs/images"]
 
 
 def git_commit():
-    """The commit, with -dirty when a tracked file other than the evaluation's outputs differs from it."""
+    """The commit, with -dirty when a tracked file other than the evaluation's outputs and the docs differs from it
+    (docs/ holds the generated blocks the scripts write and prose: a run made while a doc was being edited ran
+    the committed code)."""
     head = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
     if head.returncode != 0:
         return "unknown"
     changed = subprocess.run(["git", "-C", ROOT, "status", "--porcelain", "--untracked-files=no", "--", "."] +
-                             [f":(exclude){p}" for p in OUTPUTS], capture_output=True, text=True).stdout
+                             [f":(exclude){p}" for p in OUTPUTS + ["docs"]], capture_output=True, text=True).stdout
     return head.stdout.strip() + ("-dirty" if changed.strip() else "")
 
 
