@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "../gpu/gl_test_support.hpp"
@@ -172,6 +173,32 @@ std::vector<double> resolve_gains_db(const scene& s, std::vector<renderer>& nois
     return gains;
 }
 
+/// `burley-8` with the resolve as built and with `define` (a --define of the resolve's guide): the two resolved
+/// images must be the same bit for bit on `static` (12 frames: a still camera under still lights, where no guide
+/// changes), and their resolved gains over the raw frames under `moving`'s orbit (frames 10-29, 64x48, SSS pixels)
+/// are returned, as built first.
+std::pair<double, double> guide_gains_against(const std::string& define) {
+    const method noisy{method::kind::burley, 8};
+    render_options other = options_with(resolve_mode::taa);
+    add_define(other.defines, define);
+    {
+        const scene still = load_scene_argument("static");
+        renderer built(still, noisy, options_with(resolve_mode::taa)), changed(still, noisy, other);
+        for (int frame = 0; frame < 12; ++frame) {
+            INFO("static, frame " << frame << ", " << define);
+            built.render(frame);
+            changed.render(frame);
+            CHECK(built.shown().pixels == changed.shown().pixels);
+        }
+    }
+    const scene moving = load_scene_argument("moving");
+    std::vector<renderer> runs;
+    runs.emplace_back(moving, noisy, options_with(resolve_mode::taa));
+    runs.emplace_back(moving, noisy, other);
+    const frame_errors e = resolve_errors(moving, runs, 64, 48, 30);
+    return {gain_db(e, 0, 10, 30), gain_db(e, 1, 10, 30)};
+}
+
 }  // namespace
 
 TEST_CASE("the resolve removes most of a stochastic method's noise under still lighting", "[resolve]") {
@@ -317,25 +344,7 @@ TEST_CASE("the guide moves a resampled history back onto the frame, and leaves a
     // error than the raw frames.
     emcv::gl::context ctx = emcv::test::context_or_skip();
     emcv::gl::debug_messenger messenger;
-    const method noisy{method::kind::burley, 8};
-    render_options unguided = options_with(resolve_mode::taa);
-    add_define(unguided.defines, "EMCV_RESOLVE_GUIDE=0");
-    {
-        const scene still = load_scene_argument("static");
-        renderer with_guide(still, noisy, options_with(resolve_mode::taa)), without(still, noisy, unguided);
-        for (int frame = 0; frame < 12; ++frame) {
-            INFO("static, frame " << frame);
-            with_guide.render(frame);
-            without.render(frame);
-            CHECK(with_guide.shown().pixels == without.shown().pixels);
-        }
-    }
-    const scene moving = load_scene_argument("moving");
-    std::vector<renderer> runs;
-    runs.emplace_back(moving, noisy, options_with(resolve_mode::taa));
-    runs.emplace_back(moving, noisy, unguided);
-    const frame_errors e = resolve_errors(moving, runs, 64, 48, 30);
-    const double guided_gain = gain_db(e, 0, 10, 30), unguided_gain = gain_db(e, 1, 10, 30);
+    const auto [guided_gain, unguided_gain] = guide_gains_against("EMCV_RESOLVE_GUIDE=0");
     INFO("moving, resolved over raw, frames 10-29: guided " << guided_gain << " dB, unguided " << unguided_gain << " dB");
     CHECK(guided_gain > unguided_gain);
     CHECK(guided_gain > 0.0);
@@ -353,25 +362,7 @@ TEST_CASE("the guide's fixed estimate of the scattered light follows a moving ca
     // nothing: the resolved images are the same bit for bit.
     emcv::gl::context ctx = emcv::test::context_or_skip();
     emcv::gl::debug_messenger messenger;
-    const method noisy{method::kind::burley, 8};
-    render_options unscattered = options_with(resolve_mode::taa);
-    add_define(unscattered.defines, "EMCV_RESOLVE_GUIDE_TAPS=0");
-    {
-        const scene still = load_scene_argument("static");
-        renderer taps(still, noisy, options_with(resolve_mode::taa)), plain(still, noisy, unscattered);
-        for (int frame = 0; frame < 12; ++frame) {
-            INFO("static, frame " << frame);
-            taps.render(frame);
-            plain.render(frame);
-            CHECK(taps.shown().pixels == plain.shown().pixels);
-        }
-    }
-    const scene moving = load_scene_argument("moving");
-    std::vector<renderer> runs;
-    runs.emplace_back(moving, noisy, options_with(resolve_mode::taa));
-    runs.emplace_back(moving, noisy, unscattered);
-    const frame_errors e = resolve_errors(moving, runs, 64, 48, 30);
-    const double scattered_gain = gain_db(e, 0, 10, 30), unscattered_gain = gain_db(e, 1, 10, 30);
+    const auto [scattered_gain, unscattered_gain] = guide_gains_against("EMCV_RESOLVE_GUIDE_TAPS=0");
     INFO("moving, resolved over raw, frames 10-29: scattered-light guide " << scattered_gain
                                                                           << " dB, unscattered " << unscattered_gain << " dB");
     CHECK(scattered_gain > unscattered_gain + 1.0);
