@@ -46,8 +46,8 @@ inline constexpr int switch_window_frames = 30;
 /// frame rendered; window 0: every frame from `first_change` on.
 /// Sample ratio (mean over frames of mean_spp), SSS-pass-time ratio (mean sss_ms over the window's frames from
 /// `timing_from_frame` on, as summarize takes the table's times: frame 0 compiles and first touches every
-/// resource, and once cost one method 1.3 s where its steady frames took 5 ms; the line says "(from frame F)"
-/// where that leaves frames out) and PSNR gap (mean over frames of psnr_db, name minus baseline), then, when the
+/// resource, a one-off cost that can outweigh every steady frame; the line says "(from frame F)" where that leaves
+/// frames out) and PSNR gap (mean over frames of psnr_db, name minus baseline), then, when the
 /// rows have them, the same gap of the resolved images (psnr_resolved_db). Empty when either did not run, or no
 /// frame of either lies in the window.
 std::optional<std::string> compare_after_change(const std::vector<metrics_row>& rows, int first_change,
