@@ -42,6 +42,7 @@ std::vector<std::size_t> shadow_casters(const scene& s) {
 frame_planner::frame_planner(const scene& s, const method& m, int width, int height, resolve_mode resolve,
                              const sampling_mode& sampling, bool jitter)
     : s_(&s), m_(m), width_(width), height_(height), resolve_(resolve), budget_(sampling.budget),
+      plan_ahead_(sampling.budget && sampling.plan_ahead),
       jitter_(jitter && resolve == resolve_mode::taa && m.type != method::kind::reference), casters_(shadow_casters(s)) {
     for (const object& o : s.objects)
         if (s.materials.at(static_cast<std::size_t>(o.material)).scatters()) sss_bounds_.push_back(object_bounds(s, o));
@@ -76,6 +77,7 @@ const std::vector<planned_pass>& frame_planner::plan(int frame, const std::vecto
         }
     }
     scatters_ = visible && !reused_;
+    planned_by_previous_ = false;
 
     passes_.clear();
     passes_.push_back({pass_id::gbuffer, 0, 0});
@@ -90,14 +92,24 @@ const std::vector<planned_pass>& frame_planner::plan(int frame, const std::vecto
                 passes_.push_back({pass_id::sss_separable_h, 0, 0});
                 passes_.push_back({pass_id::sss_separable_v, 0, 0});
                 break;
-            case sss_passes::adaptive:
+            case sss_passes::adaptive: {
                 // The method's own burley program, which also updates the history (and under a quality target
                 // first plans N over its tile); a budget records one pass more before it: the samples pass,
-                // whose last workgroup solves the frame's scale from every pixel's variance.
-                if (budget_) passes_.push_back({pass_id::sss_adaptive_samples, 0, 0});
-                passes_.push_back({pass_id::sss_burley, 0, 0});
+                // whose last workgroup solves the frame's scale from every pixel's variance; unless the last
+                // frame's burley pass planned this frame (same view), which this frame's does for the next
+                // frame when that one shows this view again.
+                planned_by_previous_ = plan_ahead_ && planned_frame_ == frame;
+                if (budget_ && !planned_by_previous_) passes_.push_back({pass_id::sss_adaptive_samples, 0, 0});
+                const bool plans_next = plan_ahead_ && !jitter_ && same_camera(camera_matrices(s.view, frame + 1, width_, height_), v);
+                passes_.push_back({pass_id::sss_burley, 0, 0, plans_next});
+                planned_frame_ = plans_next ? frame + 1 : -1;
                 break;
+            }
         }
+    }
+    if (!scatters_) {  // no burley pass planned the next frame, and no history was updated here
+        planned_by_previous_ = false;
+        planned_frame_ = -1;
     }
     passes_.push_back({pass_id::composite, 0, 0});
     // The reference is the converged image an engine's resolve would converge to: it is compared raw.

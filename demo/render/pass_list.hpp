@@ -53,7 +53,12 @@ struct planned_pass {
     pass_id id = pass_id::gbuffer;
     std::size_t light = 0;  ///< shadow: the light's index in the scene
     std::size_t layer = 0;  ///< shadow: its layer in the shadow-map array
-    bool operator==(const planned_pass& o) const { return id == o.id && light == o.light && layer == o.layer; }
+    /// sss_burley of an adaptive method in budget mode: it also plans the next frame's counts (that frame shows
+    /// this frame's view: frame_planner::plan), so that frame records no sss-adaptive-samples.
+    bool plans_next = false;
+    bool operator==(const planned_pass& o) const {
+        return id == o.id && light == o.light && layer == o.layer && plans_next == o.plans_next;
+    }
 };
 
 /// "shadow:<light name>" for a shadow pass, the base name otherwise.
@@ -72,6 +77,10 @@ public:
     /// every pixel's variance before any pixel's N, so it records the adaptive-samples pass (which also solves
     /// the frame's scale) before the method's burley program; a quality target needs only the pixel's tile,
     /// and the burley program plans N itself (no pass more than burley-N's).
+    /// Under a budget with `sampling.plan_ahead`, a frame whose next frame (frame + 1) shows the same camera
+    /// (view and projection bit for bit, so the same G-buffer: objects do not move in the scene model) plans that
+    /// frame's counts in its burley pass (planned_pass::plans_next), and that frame, planned next, records no
+    /// samples pass: the data of a still view allow the fusion. Any other frame records it.
     /// `jitter`: the camera moves by taa_jitter(frame) under resolve taa (render_options::jitter; never the
     /// reference's).
     frame_planner(const scene& s, const method& m, int width, int height, resolve_mode resolve,
@@ -93,6 +102,10 @@ public:
         return scatters_ && samples_randomly(m_) && resolve_ == resolve_mode::taa && !jitter_ &&
                m_.type != method::kind::reference;
     }
+    /// Whether the last planned frame's counts were planned by the frame before it (its burley pass had
+    /// plans_next): it records no samples pass, and its history is updated where that frame left it (in place,
+    /// adaptive::history::begin_frame).
+    bool planned_by_previous() const { return planned_by_previous_; }
     /// The camera of the last planned frame (the renderer uploads it).
     const view_matrices& view() const { return view_; }
     /// Forget the held result (method switch).
@@ -104,6 +117,7 @@ private:
     int width_, height_;
     resolve_mode resolve_;
     bool budget_;
+    bool plan_ahead_;
     bool jitter_;
     std::vector<bounding_sphere> sss_bounds_;
     std::vector<std::size_t> casters_;
@@ -111,6 +125,8 @@ private:
     std::vector<float> inputs_, held_inputs_;
     view_matrices view_;
     bool held_ = false, reused_ = false, scatters_ = false;
+    int planned_frame_ = -1;  ///< the frame the last planned frame's burley pass plans (-1: none)
+    bool planned_by_previous_ = false;
 };
 
 /// The names of frame_planner's list for one frame, planned from scratch (no held reference result): what

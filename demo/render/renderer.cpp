@@ -168,6 +168,7 @@ struct renderer::impl {
                                     div_up(o.width, EMCV_RENDER_TILE_SIZE), div_up(o.height, EMCV_RENDER_TILE_SIZE),
                                     planner.scatters()};
         passes::bind_frame_resources(context);
+        if (history) history->begin_frame(planner.planned_by_previous());
         // A stamp at every pass boundary (gl/timestamps.hpp): the wall clock finishes the GPU's work there, GPU
         // timestamps never wait.
         stamps.begin_frame(frame);

@@ -19,6 +19,9 @@ const std::vector<tunable>& tunables() {
          EMCV_HISTORY_TARGET},
         {"EMCV_HISTORY_SPP_BUDGET", t::real, 0.0, 1024.0, false, "budget mode when > 0: mean samples per SSS pixel",
          EMCV_HISTORY_SPP_BUDGET},
+        {"EMCV_HISTORY_PLAN_AHEAD", t::integer, 0, 1, false,
+         "budget mode: 1 plans a frame that shows the last frame's view in that frame's burley pass (no samples pass)",
+         EMCV_HISTORY_PLAN_AHEAD},
         {"EMCV_HISTORY_N_MAX", t::integer, 1, 1024, false, "most samples per pixel and frame", EMCV_HISTORY_N_MAX},
         {"EMCV_HISTORY_N_MIN", t::integer, 1, 1024, false, "fewest samples of a pixel that scatters", EMCV_HISTORY_N_MIN},
         {"EMCV_HISTORY_ETA_MOVING", t::real, 0.0, 0.5, true, "moving mean/variance weight (spvg, cv-notex)",
@@ -162,8 +165,9 @@ std::string sampling_mode::text() const {
 
 sampling_mode sampling_mode_of(const define_list& defines) {
     const double budget = tunable_value(defines, "EMCV_HISTORY_SPP_BUDGET");
-    if (budget > 0.0) return {true, budget};
-    return {false, tunable_value(defines, "EMCV_HISTORY_TARGET")};
+    const bool plan_ahead = tunable_value(defines, "EMCV_HISTORY_PLAN_AHEAD") != 0.0;
+    if (budget > 0.0) return {true, budget, plan_ahead};
+    return {false, tunable_value(defines, "EMCV_HISTORY_TARGET"), false};
 }
 
 }  // namespace emcv::demo

@@ -54,6 +54,9 @@ void check_tunables(const define_list& defines);
 struct sampling_mode {
     bool budget = false;
     double value = 0.0;
+    /// Budget mode and EMCV_HISTORY_PLAN_AHEAD: a frame whose next frame shows its view plans that frame's
+    /// counts in its burley pass (frame_planner), and the next frame records no samples pass.
+    bool plan_ahead = false;
     /// "budget 8 spp" or "target variance 0.0001": what metrics and summaries print.
     std::string text() const;
 };

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -116,6 +117,10 @@ float shadow_texel_world(const light& l, const bounding_sphere& b, int resolutio
     const float distance = glm::length(b.centre - l.position);
     const float half_angle = glm::radians(std::min(l.outer_cone_degrees + 1.0f, 85.0f));
     return 2.0f * distance * std::tan(half_angle) / static_cast<float>(resolution);
+}
+
+bool same_camera(const view_matrices& a, const view_matrices& b) {
+    return std::memcmp(&a.view, &b.view, sizeof a.view) == 0 && std::memcmp(&a.proj, &b.proj, sizeof a.proj) == 0;
 }
 
 }  // namespace emcv::demo

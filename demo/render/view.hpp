@@ -19,6 +19,10 @@ struct view_matrices {
     bool jittered = false;  ///< made by jittered()
 };
 
+/// Whether two cameras are the same bit for bit (view and projection): the rasteriser then writes the same
+/// G-buffer, objects not moving in the scene model.
+bool same_camera(const view_matrices& a, const view_matrices& b);
+
 /// The temporal resolve's camera jitter at `frame`, in pixels, each component in (-0.5, 0.5): the Halton (2, 3)
 /// points 1-8 (`frame mod 8` + 1) less 0.5, as TAA implementations jitter, so that over 8 frames a still pixel's
 /// samples cover its area and the resolve's history accumulates its anti-aliased value.

@@ -57,7 +57,7 @@ VARIANTS = [
       (SAMPLES, "    if (emcv_history_budget_mode()) emcv_budget_finish_group(here, gl_NumWorkGroups.x * "
                 "gl_NumWorkGroups.y);", "")]),
     ("burley pass: every pixel takes B (no divergence; the history update runs)", "burley",
-     [(BURLEY, "    uint n = adaptive_count(p);\n", "    uint n = adaptive_count(p);\n    n = uint(EMCV_HISTORY_SPP_BUDGET);\n")]),
+     [(BURLEY, "own = adaptive_count(p);", "own = uint(EMCV_HISTORY_SPP_BUDGET);")]),
     ("burley pass: no noise test (cv: the push alone, no barrier, no pool)", "burley",
      [(HISTORY_IO, "#if defined(EMCV_ADAPTIVE_CV)\n    if (gl_LocalInvocationIndex < 3u)",
        "#if 0\n    if (gl_LocalInvocationIndex < 3u)")]),

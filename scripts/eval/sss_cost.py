@@ -10,9 +10,13 @@ passes), its ratio to the baseline's (the ratio is taken within each run, then t
 samples per SSS pixel and the ratio of those. Under --spp-budget B the baseline is burley-B; under
 --target-variance V it is spvg, and --first/--last pick the window (e.g. the 30 frames after a switch).
 
+With --variant LABEL=NAME=VALUE[,NAME=VALUE...] (repeatable; LABEL= alone for none) the rows are the first build
+run with each variant's --define tunables instead, interleaved the same way: a renderer choice that a tunable
+switches (EMCV_HISTORY_PLAN_AHEAD) compared with itself in one run.
+
 Usage: /usr/bin/python3 scripts/eval/sss_cost.py [--build DIR]... [--runs 3] [--size 128x128] [--scene light-off]
            [--frames 60] [--first 2] [--last N] [--spp-budget 8 | --target-variance V] [--timing auto|wall|gpu]
-           [--methods burley-8,spvg,cv,cv-notex]
+           [--methods burley-8,spvg,cv,cv-notex] [--variant LABEL=NAME=VALUE]...
 """
 import argparse
 import csv
@@ -22,9 +26,19 @@ import subprocess
 import sys
 
 
-def run_eval(build, a, methods):
+def parse_variant(text):
+    """"LABEL=NAME=VALUE,NAME=VALUE" -> (LABEL, ["NAME=VALUE", ...]); "LABEL=" -> (LABEL, [])."""
+    label, sep, defines = text.partition("=")
+    if not label or not sep:
+        sys.exit(f"sss_cost.py: --variant needs LABEL=[NAME=VALUE,...], got {text!r}")
+    return label, [d for d in defines.split(",") if d]
+
+
+def run_eval(build, a, methods, defines=()):
     cmd = [f"{build}/bin/emcv-eval", "--scene", a.scene, "--size", a.size, "--frames", str(a.frames),
            "--method", ",".join(methods)]
+    for d in defines:
+        cmd += ["--define", d]
     if a.timing != "auto":  # builds from before --timing took the wall clock, which is auto's on llvmpipe
         cmd += ["--timing", a.timing]
     if a.target_variance is not None:
@@ -55,28 +69,33 @@ def main():
     p.add_argument("--target-variance", default=None)
     p.add_argument("--timing", default="auto")
     p.add_argument("--methods", default=None)
+    p.add_argument("--variant", action="append", default=None)
     a = p.parse_args()
     builds = a.build or ["build"]
+    # Each row set: (label, build, defines): the builds as they are, or the first build under each variant.
+    runs = [(b, b, []) for b in builds]
+    if a.variant:
+        runs = [(label, builds[0], defines) for label, defines in map(parse_variant, a.variant)]
     if a.runs < 1:
         sys.exit("sss_cost.py: --runs must be at least 1")
     baseline = "spvg" if a.target_variance is not None else f"burley-{a.spp_budget}"
     methods = a.methods.split(",") if a.methods else [baseline] + [m for m in ("spvg", "cv", "cv-notex") if m != baseline]
     if baseline not in methods:
         methods = [baseline] + methods
-    results = {b: [] for b in builds}
+    results = {label: [] for label, _, _ in runs}
     clocks = set()
     for _ in range(a.runs):
-        for b in builds:  # interleaved: run r of every build before run r + 1 of any
-            r, clock = run_eval(b, a, methods)
-            results[b].append(r)
+        for label, b, defines in runs:  # interleaved: run r of every build (variant) before run r + 1 of any
+            r, clock = run_eval(b, a, methods, defines)
+            results[label].append(r)
             clocks.add(clock)
     mode = f"target variance {a.target_variance}" if a.target_variance is not None else f"budget {a.spp_budget} spp"
     last = a.last if a.last is not None else a.frames - 1
     print(f"{a.scene}, {a.size}, {mode}, frames {a.first}-{last}, {a.runs} runs, clock {'/'.join(sorted(clocks))}")
     print()
-    print("| build | method | SSS ms (median) | / " + baseline + " | samples per SSS pixel | / " + baseline + " |")
+    print(f"| {'variant' if a.variant else 'build'} | method | SSS ms (median) | / " + baseline + " | samples per SSS pixel | / " + baseline + " |")
     print("|---|---|---|---|---|---|")
-    for b in builds:
+    for b in results:
         for m in methods:
             ms = statistics.median(r[m][0] for r in results[b])
             ratio = statistics.median(r[m][0] / r[baseline][0] for r in results[b])

@@ -14,25 +14,6 @@
 
 layout(local_size_x = EMCV_RENDER_TILE_SIZE, local_size_y = EMCV_RENDER_TILE_SIZE) in;
 
-/// Writes what the burley pass takes at scattering pixel p (see the top of the file).
-void allocate(ivec2 p, float own, uint code) {
-    float frames;
-    float sigma2 = emcv_adaptive_pooled_sigma2(own, code, frames);
-    if (emcv_history_budget_mode()) {
-        // The burley pass turns sigma into N once lambda is solved from this frame's histogram: the image
-        // carries the variance (or its code) until then.
-        // Shrunk towards the previous frame's mean by how much the pooled estimate knows (emcv/port/history.h,
-        // emcv_history_shrink_sigma2); the estimate before shrinkage feeds the next frame's prior.
-        emcv_budget_add_raw(sigma2, frames);
-        sigma2 = emcv_history_shrink_sigma2(sigma2, frames, budget.mean_sigma2, budget.between_variance,
-                                            emcv_history_spend_relative_variance());
-        emcv_budget_add(sigma2);
-        imageStore(samples_image, p, uvec4(floatBitsToUint(sigma2)));
-    } else {
-        imageStore(samples_image, p, uvec4(uint(emcv_history_count_target(sigma2))));
-    }
-}
-
 void main() {
     uint here = gl_LocalInvocationIndex;
     if (emcv_history_budget_mode()) emcv_budget_group_clear(here);  // ordered before any add by the barrier below
@@ -40,7 +21,7 @@ void main() {
     uint code;
     float frames;
     float own = emcv_adaptive_tile_sigma2(p, code, frames);
-    if (code != 0u) allocate(p, own, code);
+    if (code != 0u) emcv_adaptive_allocate(p, ivec2(gl_LocalInvocationID.xy), own, code);
     // Budget mode: every workgroup (those past the tile count too) reports; the last one solves lambda.
     if (emcv_history_budget_mode()) emcv_budget_finish_group(here, gl_NumWorkGroups.x * gl_NumWorkGroups.y);
 }

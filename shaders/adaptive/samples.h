@@ -90,6 +90,13 @@ shared float tile_sigma2[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];
 shared uint tile_code[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];
 shared float tile_frames[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];  // effective frames of each variance
 
+/// Scattering pixel p's per-sample variance (or code) from its history state s, and the effective frames it
+/// rests on: what emcv_adaptive_own_sigma2 and emcv_adaptive_stored_sigma2 return.
+float emcv_adaptive_state_sigma2(ivec2 p, uint code, EmcvAdaptiveState s, out float frames) {
+    frames = emcv_adaptive_effective_frames(s);
+    return emcv_adaptive_sub_pixel(p, code) ? emcv_history_no_samples() : emcv_adaptive_sigma2(s);
+}
+
 /// This pixel's own per-sample variance (or its code) from its kept or fresh history, and the effective frames
 /// it rests on; 0 material for pixels that do not scatter (and their history reset: nothing stale is ever
 /// reprojected from there).
@@ -111,8 +118,44 @@ float emcv_adaptive_own_sigma2(ivec2 p, out uint code, out float frames) {
     } else {
         emcv_adaptive_store(p, s);  // resampled, or a fresh state
     }
-    frames = emcv_adaptive_effective_frames(s);
-    return emcv_adaptive_sub_pixel(p, code) ? emcv_history_no_samples() : emcv_adaptive_sigma2(s);
+    return emcv_adaptive_state_sigma2(p, code, s, frames);
+}
+
+
+#if defined(EMCV_ADAPTIVE_PLAN_NEXT)
+/// The next frame's own per-sample variance (or code) at p and its effective frames, read from the history this
+/// frame's burley pass just stored at p, for a next frame that shows the same view (the burley pass plans it,
+/// sss_burley.comp.glsl): there the next frame's samples pass would find each pixel's history at its own texel
+/// (reprojection the identity, the surface the same), decode it and keep it as stored, so this is what it would
+/// return, bit for bit, without the pass. A poisoned texel is reset as that pass resets it.
+float emcv_adaptive_stored_sigma2(ivec2 p, out uint code, out float frames) {
+    code = 0u;
+    frames = 0.0f;
+    if (!emcv_render_on_screen(p)) return emcv_history_no_samples();
+    code = emcv_render_material_code(p);
+    if (!emcv_render_scatters(code)) {
+        code = 0u;
+        return emcv_history_no_samples();  // its history was reset when the view last changed, and stays so
+    }
+#if defined(EMCV_ADAPTIVE_CV)
+    vec4 b = imageLoad(history_b, p);  // this invocation's own store: ordered after it
+#else
+    vec4 b = vec4(0.0f);
+#endif
+    EmcvAdaptiveState s;
+    if (!emcv_adaptive_decode(imageLoad(history_a, p), b, s)) emcv_adaptive_store(p, s);
+    return emcv_adaptive_state_sigma2(p, code, s, frames);
+}
+#endif
+
+/// Stores a pixel's per-sample variance (or code), material code and effective frames in the tile's shared
+/// arrays at the pixel's local index `here`, for emcv_adaptive_pooled_sigma2. Every invocation calls it, in
+/// uniform control flow: it ends on the barrier after which the tile's variances are readable.
+void emcv_adaptive_share_sigma2(uint here, float own, uint code, float frames) {
+    tile_sigma2[here] = own;
+    tile_frames[here] = frames;
+    tile_code[here] = code;
+    barrier();
 }
 
 /// Shares pixel p's own per-sample variance with its tile (emcv_adaptive_own_sigma2, whose history store it
@@ -121,24 +164,20 @@ float emcv_adaptive_own_sigma2(ivec2 p, out uint code, out float frames) {
 /// tile's variances are readable (emcv_adaptive_pooled_sigma2).
 float emcv_adaptive_tile_sigma2(ivec2 p, out uint code, out float frames) {
     float own = emcv_adaptive_own_sigma2(p, code, frames);
-    uint here = gl_LocalInvocationIndex;
-    tile_sigma2[here] = own;
-    tile_frames[here] = frames;
-    tile_code[here] = code;
-    barrier();
+    emcv_adaptive_share_sigma2(gl_LocalInvocationIndex, own, code, frames);
     return own;
 }
 
 /// The per-sample variance a frame's allocation reads at scattering pixel p (material `code`, its own variance
 /// `own`), pooled over the pixel's 3x3 neighbours of the same material within its tile (emcv/port/history.h,
 /// emcv_history_pool_sigma2): one pixel's estimate rests on about 1 / eta frames of a heavy-tailed residual, and
-/// its neighbours see nearly the same noise. `pooled_frames`: the effective frames of the pooled estimate
-/// (emcv_history_pool_frames), which budget mode's shrinkage reads. After emcv_adaptive_tile_sigma2.
-float emcv_adaptive_pooled_sigma2(float own, uint code, out float pooled_frames) {
+/// its neighbours see nearly the same noise. `l`: the pixel's position within its tile. `pooled_frames`: the
+/// effective frames of the pooled estimate (emcv_history_pool_frames), which budget mode's shrinkage reads. After
+/// emcv_adaptive_share_sigma2.
+float emcv_adaptive_pooled_sigma2(ivec2 l, float own, uint code, out float pooled_frames) {
     float sum = 0.0f;
     uint count = 0u;
     float inverse_frames = 0.0f;
-    ivec2 l = ivec2(gl_LocalInvocationID.xy);
     for (int dy = -1; dy <= 1; ++dy) {
         for (int dx = -1; dx <= 1; ++dx) {
             ivec2 q = l + ivec2(dx, dy);
@@ -152,5 +191,30 @@ float emcv_adaptive_pooled_sigma2(float own, uint code, out float pooled_frames)
     pooled_frames = emcv_history_pool_frames(count, inverse_frames);
     return emcv_history_pool_sigma2(own, sum, count);
 }
+
+#if defined(EMCV_BUDGET_GROUP_THREADS)
+/// Writes what the burley pass takes at scattering pixel p (tile position l, own variance `own`, material
+/// `code`), after emcv_adaptive_share_sigma2: in budget mode the pooled variance, shrunk, into the samples image
+/// and the workgroup's histograms, from which the last workgroup solves lambda (emcv_budget_finish_group); built
+/// with a quality target (tests), N. The samples pass runs it for this frame, the burley pass that plans the next
+/// frame for that one (sss_burley.comp.glsl).
+void emcv_adaptive_allocate(ivec2 p, ivec2 l, float own, uint code) {
+    float frames;
+    float sigma2 = emcv_adaptive_pooled_sigma2(l, own, code, frames);
+    if (emcv_history_budget_mode()) {
+        // The burley pass turns sigma into N once lambda is solved from this frame's histogram: the image
+        // carries the variance (or its code) until then.
+        // Shrunk towards the previous frame's mean by how much the pooled estimate knows (emcv/port/history.h,
+        // emcv_history_shrink_sigma2); the estimate before shrinkage feeds the next frame's prior.
+        emcv_budget_add_raw(sigma2, frames);
+        sigma2 = emcv_history_shrink_sigma2(sigma2, frames, budget.mean_sigma2, budget.between_variance,
+                                            emcv_history_spend_relative_variance());
+        emcv_budget_add(sigma2);
+        imageStore(samples_image, p, uvec4(floatBitsToUint(sigma2)));
+    } else {
+        imageStore(samples_image, p, uvec4(uint(emcv_history_count_target(sigma2))));
+    }
+}
+#endif
 
 #endif  // #ifndef EMCV_ADAPTIVE_SAMPLES_H

@@ -23,6 +23,11 @@
 #if defined(EMCV_ADAPTIVE_SPVG) || defined(EMCV_ADAPTIVE_CV) || defined(EMCV_ADAPTIVE_NOTEX)
 #define EMCV_BURLEY_ADAPTIVE 1
 #define EMCV_ADAPTIVE_TILE_UPDATE 1  // emcv_adaptive_update_tile and its shared memory
+#if defined(EMCV_ADAPTIVE_PLAN_NEXT)
+// Budget mode, the next frame showing this frame's view: after its update the pass plans the next frame's N as
+// that frame's samples pass would (plan_next_frame), whose workgroup histograms and last-workgroup solve it takes.
+#define EMCV_BUDGET_GROUP_THREADS (EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE)
+#endif
 #include "adaptive/samples.h"
 #endif
 
@@ -47,6 +52,7 @@ vec3 pending_unscattered = vec3(0.0f);
 #if defined(EMCV_BURLEY_ADAPTIVE)
 uint planned_count = 0u;  // quality target: this invocation's N, planned at the top of main (plan_quality_count)
 uint assigned_count = 0u;  // the N of the pixel this invocation samples (sort_tile_by_count)
+uint assigned_local = 0u;  // that pixel's local index in the tile (sort_tile_by_count)
 // The tile's counting sort by N, over as many keys as the tile has pixels: per key its pixels' count, then its
 // first slot; each slot's pixel (local index); each pixel's N.
 #define SORT_KEYS (EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE)
@@ -63,7 +69,7 @@ void plan_quality_count(ivec2 p) {
     float own = emcv_adaptive_tile_sigma2(p, code, frames);
     if (code == 0u) return;
     float pooled_frames;
-    planned_count = uint(emcv_history_count_target(emcv_adaptive_pooled_sigma2(own, code, pooled_frames)));
+    planned_count = uint(emcv_history_count_target(emcv_adaptive_pooled_sigma2(ivec2(gl_LocalInvocationID.xy), own, code, pooled_frames)));
 }
 
 /// The pixel's N: under a quality target the one this pass planned; in budget mode the adaptive-samples pass
@@ -108,10 +114,31 @@ void sort_tile_by_count(inout ivec2 p) {
     barrier();
     uint taken = sort_pixel[here];
     assigned_count = sort_count[taken];
+    assigned_local = taken;
     // Workgroups past the tile count hold (-1, -1) everywhere (emcv_render_tile_pixel): they stay off screen.
     if (p.x >= 0)
         p += ivec2(int(taken % uint(EMCV_RENDER_TILE_SIZE)), int(taken / uint(EMCV_RENDER_TILE_SIZE))) -
              ivec2(gl_LocalInvocationID.xy);
+}
+#endif
+
+#if defined(EMCV_ADAPTIVE_PLAN_NEXT)
+/// Budget mode, when the next frame shows this frame's view (the renderer builds the pass with
+/// EMCV_ADAPTIVE_PLAN_NEXT then: frame_planner): the next frame's samples pass would reproject every history to its
+/// own texel, keep it as this pass stored it, and pool, shrink and histogram the variances over the same tiles.
+/// So this pass does that now, from the history it has just stored (emcv_adaptive_stored_sigma2), and its last
+/// workgroup solves the next frame's lambda (emcv_budget_finish_group: every other workgroup has read this frame's
+/// lambda before it reports). The next frame records no samples pass, and its burley pass reads the samples image
+/// and the budget block as that pass would have left them, bit for bit. p: the pixel this invocation sampled
+/// (sort_tile_by_count), at local index assigned_local. Every invocation calls it, in uniform control flow.
+void plan_next_frame(ivec2 p) {
+    uint code;
+    float frames;
+    float own = emcv_adaptive_stored_sigma2(p, code, frames);
+    emcv_adaptive_share_sigma2(assigned_local, own, code, frames);
+    ivec2 l = ivec2(int(assigned_local % uint(EMCV_RENDER_TILE_SIZE)), int(assigned_local / uint(EMCV_RENDER_TILE_SIZE)));
+    if (code != 0u) emcv_adaptive_allocate(p, l, own, code);
+    emcv_budget_finish_group(gl_LocalInvocationIndex, gl_NumWorkGroups.x * gl_NumWorkGroups.y);
 }
 #endif
 
@@ -169,6 +196,9 @@ void main() {
         tile_sample_sum = 0u;
         tile_sample_max = 0u;
     }
+#if defined(EMCV_ADAPTIVE_PLAN_NEXT)
+    emcv_budget_group_clear(gl_LocalInvocationIndex);  // ordered before any add by the barriers below
+#endif
     barrier();
     ivec2 p = emcv_render_tile_pixel();
 #if defined(EMCV_BURLEY_ADAPTIVE)
@@ -187,4 +217,7 @@ void main() {
         atomicAdd(stats.sample_sum, tile_sample_sum);
         atomicMax(stats.sample_max, tile_sample_max);
     }
+#if defined(EMCV_ADAPTIVE_PLAN_NEXT)
+    plan_next_frame(p);
+#endif
 }

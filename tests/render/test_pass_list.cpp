@@ -55,6 +55,119 @@ TEST_CASE("pass lists of scenes built in code") {
     CHECK_FALSE(has_pass(pass_list(point, burley16, 0, 64, 48, resolve_mode::none), "shadow:spot"));
 }
 
+namespace {
+
+/// light-off's camera held at frames 0-9, moving from frame 10 to frame 14, held again from frame 14 on.
+scene still_move_still() {
+    scene s = load_scene_argument("light-off");
+    const glm::vec3 target = s.view.target;
+    s.view.keys = {{0, s.view.position, target}, {10, s.view.position, target},
+                   {14, s.view.position + glm::vec3(0.3f, 0.0f, 0.0f), target}};
+    return s;
+}
+
+/// Per frame from 0: (records sss-adaptive-samples, its sss-burley plans the next frame), as one planner plans
+/// the frames in order.
+std::vector<std::pair<bool, bool>> plan_sequence(const scene& s, const method& m, const sampling_mode& sampling,
+                                                 int frames, bool jitter = false) {
+    frame_planner planner(s, m, 64, 48, resolve_mode::taa, sampling, jitter);
+    std::vector<std::pair<bool, bool>> out;
+    for (int frame = 0; frame < frames; ++frame) {
+        bool samples = false, plans = false;
+        for (const planned_pass& p : planner.plan(frame)) {
+            samples = samples || p.id == pass_id::sss_adaptive_samples;
+            if (p.id == pass_id::sss_burley) plans = p.plans_next;
+            CHECK((p.plans_next && p.id != pass_id::sss_burley) == false);
+        }
+        CHECK(planner.planned_by_previous() == (is_adaptive(m) && sampling.budget && !samples && planner.scatters()));
+        out.emplace_back(samples, plans);
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("a budget's burley pass plans the next frame where the camera holds, and that frame records no samples pass") {
+    const scene s = still_move_still();
+    const method cv{method::kind::cv, 0};
+    const sampling_mode budget{true, 8.0, true};
+    const std::vector<std::pair<bool, bool>> seq = plan_sequence(s, cv, budget, 20);
+    for (int frame = 0; frame < 20; ++frame) {
+        INFO("frame " << frame);
+        const bool moved_in = frame >= 11 && frame <= 14;  // its camera differs from frame - 1's
+        const bool moves_next = frame >= 10 && frame <= 13;  // frame + 1's camera differs from its own
+        CHECK(seq[std::size_t(frame)].first == (frame == 0 || moved_in));
+        CHECK(seq[std::size_t(frame)].second == !moves_next);
+    }
+    // Every adaptive method alike; spvg's passes are cv's.
+    CHECK(plan_sequence(s, method{method::kind::spvg, 0}, budget, 20) == seq);
+    CHECK(plan_sequence(s, method{method::kind::cv_notex, 0}, budget, 20) == seq);
+    // Never with EMCV_HISTORY_PLAN_AHEAD=0, under a quality target (no samples pass to spare), under jitter (the
+    // camera moves every frame), for burley-N (no history).
+    for (const auto& [samples, plans] : plan_sequence(s, cv, sampling_mode{true, 8.0, false}, 20)) {
+        CHECK(samples);
+        CHECK_FALSE(plans);
+    }
+    for (const auto& [samples, plans] : plan_sequence(s, cv, sampling_mode{false, 1e-4, false}, 20)) {
+        CHECK_FALSE(samples);
+        CHECK_FALSE(plans);
+    }
+    for (const auto& [samples, plans] : plan_sequence(s, cv, budget, 20, true)) {
+        CHECK(samples);
+        CHECK_FALSE(plans);
+    }
+    for (const auto& [samples, plans] : plan_sequence(s, burley16, budget, 20)) CHECK_FALSE((samples || plans));
+    // A camera that moves every frame: every frame plans itself.
+    for (const auto& [samples, plans] : plan_sequence(load_scene_argument("moving"), cv, budget, 20)) {
+        CHECK(samples);
+        CHECK_FALSE(plans);
+    }
+    // Frames out of order: only frame + 1 is planned by frame.
+    frame_planner planner(s, cv, 64, 48, resolve_mode::taa, budget);
+    planner.plan(0);
+    planner.plan(5);
+    CHECK_FALSE(planner.planned_by_previous());
+    planner.plan(6);
+    CHECK(planner.planned_by_previous());
+}
+
+TEST_CASE("a burley pass that plans the next frame leaves every image, count and alpha as the samples pass would, bit for bit", "[image-files]") {
+    emcv::gl::context ctx = emcv::test::context_or_skip();
+    emcv::gl::debug_messenger messenger;
+    // Still, moving, still again; the key light switches off at frame 30 (light-off), under the planned frames.
+    const scene s = still_move_still();
+    for (const method& m : {method{method::kind::cv, 0}, method{method::kind::spvg, 0}, method{method::kind::cv_notex, 0}}) {
+        INFO(m.name());
+        render_options planned;
+        planned.width = 48;
+        planned.height = 32;
+        add_define(planned.defines, "EMCV_HISTORY_SPP_BUDGET=4");
+        render_options unplanned = planned;
+        add_define(unplanned.defines, "EMCV_HISTORY_PLAN_AHEAD=0");
+        renderer a(s, m, planned), b(s, m, unplanned);
+        frame_planner listing(s, m, planned.width, planned.height, planned.resolve, sampling_mode_of(planned.defines));
+        int planned_frames = 0;
+        for (int frame = 0; frame < 34; ++frame) {
+            INFO("frame " << frame);
+            std::vector<std::string> recorded;
+            for (const pass_time& p : a.render(frame).times.passes) recorded.emplace_back(p.name);
+            b.render(frame);
+            // the renderer records the list its planner prints, the samples pass only where no frame planned it
+            std::vector<std::string> listed;
+            for (const planned_pass& p : listing.plan(frame)) listed.push_back(pass_name(s, p));
+            CHECK(recorded == listed);
+            if (listing.planned_by_previous()) ++planned_frames;
+            CHECK(has_pass(recorded, "sss-adaptive-samples") == !listing.planned_by_previous());
+            CHECK(a.sample_counts().pixels == b.sample_counts().pixels);
+            CHECK(a.linear().pixels == b.linear().pixels);
+            CHECK(a.shown().pixels == b.shown().pixels);
+            CHECK(a.cv_alpha().pixels == b.cv_alpha().pixels);
+        }
+        CHECK(planned_frames == 34 - 5);  // all but frame 0 and the moving frames 11-14
+    }
+    CHECK(messenger.error_count() == 0);
+}
+
 TEST_CASE("the temporal resolve: one pass after the composite, for every method but the reference, never under none") {
     const scene sphere = emcv::test::sphere_on_floor();
     for (const method& m : all_methods()) {

@@ -72,17 +72,23 @@ private:
 
 /// The defines a shader is built with by the renderer: a shader that includes the adaptive history
 /// (adaptive/history_io.h, or adaptive/samples.h around it) once per adaptive method's define (method table);
-/// the burley pass, which includes it only when one is defined, also once without (burley-N); every other
-/// shader once without.
-std::vector<std::string> method_defines(const fs::path& shader) {
+/// the burley pass, which includes it only when one is defined, also once without (burley-N), and once more per
+/// method as the budget's variant that plans the next frame (EMCV_ADAPTIVE_PLAN_NEXT); every other shader once
+/// without.
+std::vector<std::vector<std::pair<std::string, std::string>>> method_defines(const fs::path& shader) {
     const std::string text = emcv_test::read_file(shader);
     const bool includes_history = text.find("#include \"adaptive/history_io.h\"") != std::string::npos ||
                                   text.find("#include \"adaptive/samples.h\"") != std::string::npos;
-    if (!includes_history) return {""};
-    std::vector<std::string> out;
-    if (text.find("defined(EMCV_ADAPTIVE_SPVG)") != std::string::npos) out.emplace_back("");
-    for (const emcv::demo::method_row& r : emcv::demo::method_table())
-        if (!r.adaptive_define.empty()) out.emplace_back(r.adaptive_define);
+    if (!includes_history) return {{}};
+    std::vector<std::vector<std::pair<std::string, std::string>>> out;
+    if (text.find("defined(EMCV_ADAPTIVE_SPVG)") != std::string::npos) out.emplace_back();
+    for (const emcv::demo::method_row& r : emcv::demo::method_table()) {
+        if (r.adaptive_define.empty()) continue;
+        out.push_back({{std::string(r.adaptive_define), "1"}});
+        if (text.find("defined(EMCV_ADAPTIVE_PLAN_NEXT)") != std::string::npos)
+            out.push_back({{std::string(r.adaptive_define), "1"}, {"EMCV_ADAPTIVE_PLAN_NEXT", "1"},
+                           {"EMCV_HISTORY_SPP_BUDGET", "8.0f"}});
+    }
     return out;
 }
 
@@ -94,11 +100,13 @@ TEST_CASE("every shader preprocesses and validates with glslangValidator for Ope
     for (const auto& entry : fs::recursive_directory_iterator(root)) {
         const fs::path p = entry.path();
         if (!entry.is_regular_file() || p.extension() != ".glsl" || p.stem().extension().empty()) continue;
-        for (const std::string& define : method_defines(p)) {
+        for (const auto& defines : method_defines(p)) {
             ++shaders;
-            INFO("shader " << p.string() << (define.empty() ? "" : " with " + define));
+            std::string with;
+            for (const auto& [name, value] : defines) with += " " + name + "=" + value;
+            INFO("shader " << p.string() << (with.empty() ? "" : " with" + with));
             preprocess_options options = project_options();
-            if (!define.empty()) options.defines = {{define, "1"}};
+            options.defines = defines;
             const auto src = preprocess_file(p, options);
             const fs::path flat = write_preprocessed(fs::path("shaders") / fs::relative(p, root), src.text);
             const std::string stage = stage_of(p);

@@ -63,7 +63,8 @@ history::history(const method& m, int width, int height, const gl::preprocess_op
     // The samples pass and its image are made where they run: in budget mode now, under a quality target only
     // if asked for (record_samples).
     if (budget_mode_) make_samples_pass();
-    burley_program_ = gl::program::compute(shader_dir / "render" / "sss_burley.comp.glsl", options_);
+    burley_path_ = shader_dir / "render" / "sss_burley.comp.glsl";
+    burley_program_ = gl::program::compute(burley_path_, options_);
     // Zeroed: no histogram yet (the first frame's pixels have no variance and take B), lambda 0.
     budget_ = gl::buffer::create();
     const emcv::port::EmcvBudgetBlock empty{};
@@ -112,10 +113,25 @@ void history::bind_for_update() const {
     glBindImageTexture(EMCV_ADAPTIVE_IMG_SAMPLES, samples_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
 }
 
-void history::use_burley() {
-    burley_program_.use();
+void history::use_burley(bool plans_next) {
+    if (plans_next) {
+        if (!budget_mode_) throw std::logic_error("adaptive history: only a budget plans the next frame's counts");
+        if (!burley_plan_next_program_.id()) {
+            gl::preprocess_options options = options_;
+            options.defines.emplace_back("EMCV_ADAPTIVE_PLAN_NEXT", "1");
+            burley_plan_next_program_ = gl::program::compute(burley_path_, options);
+        }
+        burley_plan_next_program_.use();
+    } else {
+        burley_program_.use();
+    }
     bind_previous();
     bind_for_update();
+}
+
+void history::begin_frame(bool in_place) {
+    // end_frame made the newest textures the previous ones; in place they are this frame's again.
+    if (in_place) current_ = 1 - current_;
 }
 
 void history::end_frame(bool updated) {

@@ -10,7 +10,9 @@
 //   sss-burley        the renderer's burley pass built with the method's define: N per pixel (under a quality
 //                     target planned by the pass itself from the reprojected history, adaptive/samples.h;
 //                     under a budget from sigma and lambda), then this frame's (f, G) pushed into the history
-//                     as a batch of N
+//                     as a batch of N; under a budget, when the next frame shows the same view, its variant
+//                     then plans the next frame as adaptive-samples would, and that frame records no samples
+//                     pass (its history updated in place)
 // Layouts and choices: include/emcv/port/history.h and docs/renderer.md. Created only for an adaptive
 // method, so the other methods allocate nothing of this.
 #pragma once
@@ -67,8 +69,14 @@ public:
     /// Makes the method's burley program current and binds what it reads and updates besides the burley
     /// pass's own outputs: last frame's history (which a quality target's burley pass reprojects, through the
     /// previous G-buffer the caller binds as for record_samples), this frame's history images, the samples image
-    /// and the budget block.
-    void use_burley();
+    /// and the budget block. `plans_next` (budget mode): the program built with EMCV_ADAPTIVE_PLAN_NEXT (made on
+    /// first use), which after its update also plans the next frame's counts as that frame's samples pass would
+    /// for the same view (sss_burley.comp.glsl, plan_next_frame).
+    void use_burley(bool plans_next = false);
+    /// Start of every frame of the method: `in_place` when the last frame's burley pass planned this one
+    /// (frame_planner::planned_by_previous): no samples pass copies the history into this frame's textures, so
+    /// this frame's are the newest, updated where they are.
+    void begin_frame(bool in_place);
     /// Binds this frame's history images, the samples image and the budget block at their adaptive slots
     /// (record_samples, use_burley; tests that run the history update on given values with a probe program).
     void bind_for_update() const;
@@ -98,8 +106,8 @@ private:
     bool budget_mode_;
     int width_, height_;
     gl::preprocess_options options_;  // the method's shader options, for the samples program's first use
-    std::filesystem::path samples_path_;
-    gl::program samples_program_, burley_program_;
+    std::filesystem::path samples_path_, burley_path_;
+    gl::program samples_program_, burley_program_, burley_plan_next_program_;
     gl::buffer budget_;  // EmcvBudgetBlock: allocated in every mode (the passes declare it), used in budget mode
     std::array<gl::texture_2d, 2> a_, b_;  // ping-pong: [current_] is this frame's
     int current_ = 0;

@@ -48,6 +48,14 @@ EMCV_PORT_BEGIN
 // `--define NAME=VALUE`, which demo/render/tunables.cpp validates against the ranges given here). None is
 // tuned on a scene: docs/renderer.md says where each comes from.
 
+/// Budget mode: 1 lets the burley pass of a frame whose next frame shows the same view (and the same surfaces)
+/// plan that frame's counts from the history it has just updated, as that frame's samples pass would, bit for bit:
+/// the next frame then records no samples pass (docs/renderer.md, "Planning the next frame"). 0 always records
+/// the samples pass. A renderer's choice of passes, not a formula: no function of the port reads it. Range: [0, 1].
+#ifndef EMCV_HISTORY_PLAN_AHEAD
+#define EMCV_HISTORY_PLAN_AHEAD 1
+#endif
+
 /// Quality-target mode: the variance of a pixel's output (gamma-space luminance) the count aims at; SPVG's
 /// 1e-4. Range: (0, 1].
 #ifndef EMCV_HISTORY_TARGET
