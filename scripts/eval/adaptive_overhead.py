@@ -35,7 +35,10 @@ BUDGET = "adaptive/budget_block.h"
 BURLEY = "render/sss_burley.comp.glsl"
 HISTORY_IO = "adaptive/history_io.h"
 
-# (name, the pass it answers for, [(file, anchor, replacement)])
+# (name, the pass it answers for, [(file, anchor, replacement)]). Every row but the last runs with the samples pass
+# on every frame (EMCV_HISTORY_PLAN_AHEAD=0): the cuts are the samples pass's pieces, and under a still camera the
+# as-built renderer records that pass only on the first frame (docs/renderer.md, "Planning the next frame").
+AS_BUILT_PLANNED = "as built, the burley pass planning each next frame (no samples pass under a still camera)"
 VARIANTS = [
     ("as built", "both", []),
     ("no reprojection: every history fresh (no previous G-buffer or history reads)", "samples",
@@ -52,7 +55,7 @@ VARIANTS = [
      [(BUDGET, "    memoryBarrierBuffer();  // this thread's histogram atomics are done before its workgroup counts "
                "as finished\n    barrier();", "    return;")]),
     ("no budget work at all (histogram, flush, solve)", "samples",
-     [(SAMPLES, "        emcv_budget_add(sigma2);\n", ""),
+     [(PLANNING, "        emcv_budget_add(sigma2);\n", ""),
       (SAMPLES, "    if (emcv_history_budget_mode()) emcv_budget_group_clear(here);", ""),
       (SAMPLES, "    if (emcv_history_budget_mode()) emcv_budget_finish_group(here, gl_NumWorkGroups.x * "
                 "gl_NumWorkGroups.y);", "")]),
@@ -63,6 +66,7 @@ VARIANTS = [
        "#if 0\n    if (gl_LocalInvocationIndex < 3u)")]),
     ("burley pass: no history update", "burley",
      [(BURLEY, "    emcv_adaptive_update_tile(p, pending_scattered, pending_unscattered, n);\n", "")]),
+    (AS_BUILT_PLANNED, "both", []),
 ]
 
 
@@ -97,11 +101,11 @@ def variant_study_arguments(argv, doc, seeds, block):
     return a
 
 
-def run(a, shader_dir, out):
+def run(a, shader_dir, out, plan_ahead=False):
     baseline = f"burley-{a.spp_budget}"
     cmd = [os.path.join(a.build, "bin", "emcv-demo"), "--scene", a.scene, "--size", a.size, "--frames",
            str(a.frames), "--method", f"{baseline},{a.method}", "--spp-budget", str(a.spp_budget), "--resolve",
-           "none", "--no-frames", "--out", out]
+           "none", "--no-frames", "--out", out, "--define", f"EMCV_HISTORY_PLAN_AHEAD={int(plan_ahead)}"]
     subprocess.run(cmd, check=True, capture_output=True, text=True, env=dict(os.environ, EMCV_SHADER_DIR=shader_dir))
     with open(os.path.join(out, "metrics.json")) as f:
         m = json.load(f)
@@ -138,7 +142,7 @@ def main(argv):
         dirs = {name: make_variant(os.path.join(tmp, f"v{i}"), edits) for i, (name, _, edits) in enumerate(VARIANTS)}
         for k in range(a.rounds):
             for name, _, _ in VARIANTS:
-                r, base, clock = run(a, dirs[name], os.path.join(tmp, "out"))
+                r, base, clock = run(a, dirs[name], os.path.join(tmp, "out"), plan_ahead=name == AS_BUILT_PLANNED)
                 ratios[name].append(r)
                 bases.append(base)
     lines = [f"{a.scene}, {a.size}, {a.method} at a budget of {a.spp_budget} beside burley-{a.spp_budget} (the same "

@@ -34,6 +34,12 @@ PIXEL = {
     # output read back 8, albedo 8; gamma luminance of f and G: 2 pow (4); EMCM push: divisions (3), the 5-sigma
     # test: a division; budget: sqrt of sigma^2.
     "adaptive update (cv)": {"bytes": 4 + 24 + 24 + 8 + 8, "sfu": 4 + 3 + 1 + 1},
+    # budget, the next frame showing this view: the burley pass plans it after its update instead of that frame's
+    # samples pass (docs/renderer.md, "Planning the next frame"): history a and b read back 24 (this invocation's
+    # own stores: most hit the caches; counted from DRAM), material code 1, sub-pixel test: material block 16 and
+    # albedo 8; sigma^2 written 4. The samples pass's SFU operations but the reprojection's division. No motion,
+    # no previous G-buffer, no history copy.
+    "planned ahead (cv, still view)": {"bytes": 24 + 1 + 16 + 8 + 4, "sfu": 6 + 9 + 1 + 1 + 1 + 1},
 }
 
 DEVICES = {
@@ -68,9 +74,11 @@ def main():
         print(f"| {name}, per pixel (DRAM) | {c['bytes']} | {c['sfu']} | "
               f"{pixels * c['bytes'] / dev['dram'] * 1e6:.1f} | {pixels * c['sfu'] / dev['sfu'] * 1e6:.1f} |")
     adaptive = sum(c["bytes"] for n, c in PIXEL.items() if n.startswith("adaptive"))
+    still = PIXEL["adaptive update (cv)"]["bytes"] + PIXEL["planned ahead (cv, still view)"]["bytes"]
     print()
     print(f"cv's per-pixel history work reads and writes {adaptive} B a pixel, as many bytes as "
-          f"{adaptive / SAMPLE['bytes']:.0f} samples' fetches.")
+          f"{adaptive / SAMPLE['bytes']:.0f} samples' fetches; where the view holds and the burley pass plans the "
+          f"next frame, {still} B ({still / SAMPLE['bytes']:.0f} samples' fetches), in one dispatch instead of two.")
 
 
 if __name__ == "__main__":

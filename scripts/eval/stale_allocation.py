@@ -84,7 +84,7 @@ BIAS = [
     (PLANNING, "    pooled_frames = emcv_history_pool_frames(count, inverse_frames);\n",
      "    pooled_frames = emcv_history_pool_frames(count, inverse_frames);\n"
      "    pooled_bias = count > 0u ? bias_sum / float(count) : 0.0f;\n"),
-    (SAMPLES, "        emcv_budget_add_raw(sigma2, frames);\n",
+    (PLANNING, "        emcv_budget_add_raw(sigma2, frames);\n",
      "        emcv_budget_add_raw(sigma2, frames);\n"
      "        if (frames > 0.0f) frames = 1.0f / (1.0f / frames + pooled_bias * pooled_bias / emcv_history_spend_relative_variance());\n"),
     (PLANNING, "    tile_frames[here] = frames;\n", "    tile_frames[here] = frames;\n    tile_bias[here] = own_bias;\n"),
@@ -140,7 +140,10 @@ def run(build, dirs, scene, frames, budget, seed, method, out):
     shader_dir, include_dir = dirs
     cmd = [os.path.join(build, "bin", "emcv-demo"), "--scene", os.path.join(ROOT, "demo", "scenes", scene), "--size",
            SIZE, "--frames", str(frames), "--method", method, "--spp-budget", str(budget), "--seed", str(seed),
-           "--resolve", "none", "--no-frames", "--out", out]
+           "--resolve", "none", "--no-frames", "--out", out,
+           # the variants edit the samples pass's planning: it runs every frame (the as-built images are the same
+           # bit for bit with the burley pass planning still frames, docs/renderer.md "Planning the next frame")
+           "--define", "EMCV_HISTORY_PLAN_AHEAD=0"]
     done = subprocess.run(cmd, capture_output=True, text=True,
                           env=dict(os.environ, EMCV_SHADER_DIR=shader_dir, EMCV_INCLUDE_DIR=include_dir))
     if done.returncode != 0:
