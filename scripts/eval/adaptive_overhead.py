@@ -65,7 +65,7 @@ VARIANTS = [
      [(HISTORY_IO, "#if defined(EMCV_ADAPTIVE_CV)\n    if (gl_LocalInvocationIndex < 3u)",
        "#if 0\n    if (gl_LocalInvocationIndex < 3u)")]),
     ("burley pass: no history update", "burley",
-     [(BURLEY, "    emcv_adaptive_update_tile(p, pending_scattered, pending_unscattered, n);\n", "")]),
+     [(BURLEY, "    emcv_adaptive_update_tile(p, pending_scattered, pending_unscattered, pending_albedo, n);\n", "")]),
     (AS_BUILT_PLANNED, "both", []),
 ]
 

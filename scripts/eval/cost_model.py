@@ -31,15 +31,15 @@ PIXEL = {
     # histogram's sqrt (14; its histograms are shared memory and a few atomics per tile, no DRAM per pixel).
     "adaptive samples (cv)": {"bytes": 4 + 8 + 4 + 8 + 1 + 24 + 24 + 4 + 16 + 8, "sfu": 6 + 1 + 9 + 1 + 1 + 1 + 1},
     # history update inside the burley pass (cv): N or sigma^2 4, history a and b read 24 and written 24, its own
-    # output read back 8, albedo 8; gamma luminance of f and G: 2 pow (4); EMCM push: divisions (3), the 5-sigma
-    # test: a division; budget: sqrt of sigma^2.
-    "adaptive update (cv)": {"bytes": 4 + 24 + 24 + 8 + 8, "sfu": 4 + 3 + 1 + 1},
+    # output read back 8 (the albedo is the taps' setup's, read once in the burley row); gamma luminance of f and
+    # G: 2 pow (4); EMCM push: divisions (3), the 5-sigma test: a division; budget: sqrt of sigma^2.
+    "adaptive update (cv)": {"bytes": 4 + 24 + 24 + 8, "sfu": 4 + 3 + 1 + 1},
     # budget, the next frame showing this view: the burley pass plans it after its update instead of that frame's
     # samples pass (docs/renderer.md, "Planning the next frame"): history a and b read back 24 (this invocation's
-    # own stores: most hit the caches; counted from DRAM), material code 1, sub-pixel test: material block 16 and
-    # albedo 8; sigma^2 written 4. The samples pass's SFU operations but the reprojection's division. No motion,
-    # no previous G-buffer, no history copy.
-    "planned ahead (cv, still view)": {"bytes": 24 + 1 + 16 + 8 + 4, "sfu": 6 + 9 + 1 + 1 + 1 + 1},
+    # own stores: most hit the caches; counted from DRAM) and sigma^2 written 4; the material code and the
+    # sub-pixel test are the taps' setup's (burley row). sigma: a division and a sqrt (2); the pooling and the
+    # shrinkage as in the samples pass (14). No motion, no previous G-buffer, no history copy.
+    "planned ahead (cv, still view)": {"bytes": 24 + 4, "sfu": 2 + 14},
 }
 
 DEVICES = {

@@ -70,13 +70,13 @@ BIAS = [
     (PLANNING, "shared float tile_frames[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];  // effective frames of each variance\n",
      "shared float tile_frames[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];  // effective frames of each variance\n"
      "shared float tile_bias[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];\nfloat own_bias = 0.0f;\nfloat pooled_bias = 0.0f;\n"),
-    (PLANNING, "    frames = emcv_adaptive_effective_frames(s);\n",
-     "    frames = emcv_adaptive_effective_frames(s);\n"
+    (PLANNING, "    return emcv_adaptive_state_sigma2(emcv_adaptive_sub_pixel(p, code), s, frames);\n",
      "    if (s.count >= 2u) {\n"
-     "        float now = emcv_adaptive_tracked(p, texelFetch(lit_diffuse, p, 0).xyz);\n"
+     "        float now = emcv_adaptive_tracked(texelFetch(gbuffer_albedo, p, 0).xyz, texelFetch(lit_diffuse, p, 0).xyz);\n"
      "        if (s.mean.y > 1e-6f) own_bias = min((now / s.mean.y) * (now / s.mean.y) - 1.0f, 1e3f);\n"
      "        else if (now > 1e-6f) own_bias = 1e3f;\n"
-     "    }\n"),
+     "    }\n"
+     "    return emcv_adaptive_state_sigma2(emcv_adaptive_sub_pixel(p, code), s, frames);\n"),
     (PLANNING, "    float inverse_frames = 0.0f;\n", "    float inverse_frames = 0.0f;\n    float bias_sum = 0.0f;\n"),
     (PLANNING, "            emcv_history_pool_add(sum, count, tile_sigma2[i]);\n",
      "            emcv_history_pool_add(sum, count, tile_sigma2[i]);\n"

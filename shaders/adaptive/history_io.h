@@ -103,22 +103,28 @@ float emcv_adaptive_effective_frames(EmcvAdaptiveState s) {
 #endif
 }
 
-/// Whether the pixel's kernel is under a pixel, where the control-variate methods take no samples (spvg never
-/// skips: it has no control to stand in for the scattered value).
-bool emcv_adaptive_sub_pixel(ivec2 p, uint code) {
+/// Whether a kernel whose widest channel has shape distance `widest_d` (mm) covers under a pixel at
+/// `pixels_per_mm`, where the control-variate methods take no samples (spvg never skips: it has no control to
+/// stand in for the scattered value).
+bool emcv_adaptive_sub_pixel_kernel(float widest_d, float pixels_per_mm) {
 #if defined(EMCV_ADAPTIVE_CV) || defined(EMCV_ADAPTIVE_NOTEX)
-    vec3 d = emcv_sss_shape_distance(materials[code - 1u].mean_free_path.xyz, texelFetch(gbuffer_albedo, p, 0).xyz);
-    float pixels_per_mm = emcv_sss_pixels_per_mm(frame.projection.x, frame.viewport.x, emcv_render_depth(p),
-                                                 frame.camera_position.w);
-    return emcv_history_sub_pixel(emcv_sss_widest(d), pixels_per_mm);
+    return emcv_history_sub_pixel(widest_d, pixels_per_mm);
 #else
     return false;
 #endif
 }
 
-/// The pixel's diffuse as displayed before the tonemap (albedo * irradiance * exposure), as gamma luminance.
-float emcv_adaptive_tracked(ivec2 p, vec3 irradiance) {
-    vec3 albedo = texelFetch(gbuffer_albedo, p, 0).xyz;
+/// emcv_adaptive_sub_pixel_kernel at scattering pixel p of material `code`, from the G-buffer.
+bool emcv_adaptive_sub_pixel(ivec2 p, uint code) {
+    vec3 d = emcv_sss_shape_distance(materials[code - 1u].mean_free_path.xyz, texelFetch(gbuffer_albedo, p, 0).xyz);
+    return emcv_adaptive_sub_pixel_kernel(emcv_sss_widest(d), emcv_sss_pixels_per_mm(frame.projection.x, frame.viewport.x,
+                                                                                       emcv_render_depth(p),
+                                                                                       frame.camera_position.w));
+}
+
+/// A pixel's diffuse as displayed before the tonemap (albedo * irradiance * exposure), as gamma luminance: the
+/// caller passes the pixel's albedo, read once.
+float emcv_adaptive_tracked(vec3 albedo, vec3 irradiance) {
     return emcv_gamma_luminance(albedo * irradiance * frame.background.w);
 }
 
@@ -171,19 +177,19 @@ shared uint tile_noise_pool[3];
 
 /// The history update of the workgroup's 8x8 tile, pixel p of material `code` having taken n samples (0 off
 /// screen and for pixels that do not scatter), its scattered and unscattered diffuse as the burley pass stored
-/// them: every invocation calls it, in uniform control flow (cv's noise test holds barriers). The state, f and
+/// them and its albedo: every invocation calls it, in uniform control flow (cv's noise test holds barriers). The state, f and
 /// g are read once. cv: each pixel's noise-test term before its push (emcv_history_noise_term) and its relative
 /// variance (emcv_history_noise_relative), in fixed-point units (emcv_history_noise_units), summed over the tile's
 /// pixels that took samples, then the push and the rescale by the pool's ratio (emcv_history_noise_ratio,
 /// emcv_adaptive_update); the other methods push as they are.
-void emcv_adaptive_update_tile(ivec2 p, vec3 scattered, vec3 unscattered, uint n) {
+void emcv_adaptive_update_tile(ivec2 p, vec3 scattered, vec3 unscattered, vec3 albedo, uint n) {
     EmcvAdaptiveState s = emcv_adaptive_init();
     float f = 0.0f;
     float g = 0.0f;
     if (n > 0u) {
         s = emcv_adaptive_load(p);
-        f = emcv_adaptive_tracked(p, scattered);
-        g = emcv_adaptive_tracked(p, unscattered);
+        f = emcv_adaptive_tracked(albedo, scattered);
+        g = emcv_adaptive_tracked(albedo, unscattered);
     }
 #if defined(EMCV_ADAPTIVE_CV)
     if (gl_LocalInvocationIndex < 3u) tile_noise_pool[gl_LocalInvocationIndex] = 0u;

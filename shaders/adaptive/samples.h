@@ -90,24 +90,30 @@ shared float tile_sigma2[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];
 shared uint tile_code[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];
 shared float tile_frames[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];  // effective frames of each variance
 
-/// Scattering pixel p's per-sample variance (or code) from its history state s, and the effective frames it
-/// rests on: what emcv_adaptive_own_sigma2 and emcv_adaptive_stored_sigma2 return.
-float emcv_adaptive_state_sigma2(ivec2 p, uint code, EmcvAdaptiveState s, out float frames) {
+/// A scattering pixel's per-sample variance (or code) from its history state s (no samples where its kernel is
+/// under a pixel, `sub_pixel`), and the effective frames it rests on: what emcv_adaptive_own_sigma2 and
+/// emcv_adaptive_stored_sigma2 return.
+float emcv_adaptive_state_sigma2(bool sub_pixel, EmcvAdaptiveState s, out float frames) {
     frames = emcv_adaptive_effective_frames(s);
-    return emcv_adaptive_sub_pixel(p, code) ? emcv_history_no_samples() : emcv_adaptive_sigma2(s);
+    return sub_pixel ? emcv_history_no_samples() : emcv_adaptive_sigma2(s);
+}
+
+/// p's material code where p is on screen and scatters, else 0.
+uint emcv_adaptive_scattering_code(ivec2 p) {
+    if (!emcv_render_on_screen(p)) return 0u;
+    uint code = emcv_render_material_code(p);
+    return emcv_render_scatters(code) ? code : 0u;
 }
 
 /// This pixel's own per-sample variance (or its code) from its kept or fresh history, and the effective frames
 /// it rests on; 0 material for pixels that do not scatter (and their history reset: nothing stale is ever
 /// reprojected from there).
 float emcv_adaptive_own_sigma2(ivec2 p, out uint code, out float frames) {
-    code = 0u;
+    code = emcv_adaptive_scattering_code(p);
     frames = 0.0f;
-    if (!emcv_render_on_screen(p)) return emcv_history_no_samples();
-    code = emcv_render_material_code(p);
-    if (!emcv_render_scatters(code)) {
-        emcv_adaptive_store(p, emcv_adaptive_init());  // the burley pass skips these pixels before any count
-        code = 0u;
+    if (code == 0u) {
+        // the burley pass skips these pixels before any count
+        if (emcv_render_on_screen(p)) emcv_adaptive_store(p, emcv_adaptive_init());
         return emcv_history_no_samples();
     }
     vec4 a, b;
@@ -118,25 +124,20 @@ float emcv_adaptive_own_sigma2(ivec2 p, out uint code, out float frames) {
     } else {
         emcv_adaptive_store(p, s);  // resampled, or a fresh state
     }
-    return emcv_adaptive_state_sigma2(p, code, s, frames);
+    return emcv_adaptive_state_sigma2(emcv_adaptive_sub_pixel(p, code), s, frames);
 }
-
 
 #if defined(EMCV_ADAPTIVE_PLAN_NEXT)
 /// The next frame's own per-sample variance (or code) at p and its effective frames, read from the history this
 /// frame's burley pass just stored at p, for a next frame that shows the same view (the burley pass plans it,
 /// sss_burley.comp.glsl): there the next frame's samples pass would find each pixel's history at its own texel
 /// (reprojection the identity, the surface the same), decode it and keep it as stored, so this is what it would
-/// return, bit for bit, without the pass. A poisoned texel is reset as that pass resets it.
-float emcv_adaptive_stored_sigma2(ivec2 p, out uint code, out float frames) {
-    code = 0u;
+/// return, bit for bit, without the pass. A poisoned texel is reset as that pass resets it. `code` (0: off screen
+/// or not scattering, whose history was reset when the view last changed and stays so) and `sub_pixel` are what
+/// the burley pass found at p this frame, which the next frame's G-buffer repeats.
+float emcv_adaptive_stored_sigma2(ivec2 p, uint code, bool sub_pixel, out float frames) {
     frames = 0.0f;
-    if (!emcv_render_on_screen(p)) return emcv_history_no_samples();
-    code = emcv_render_material_code(p);
-    if (!emcv_render_scatters(code)) {
-        code = 0u;
-        return emcv_history_no_samples();  // its history was reset when the view last changed, and stays so
-    }
+    if (code == 0u) return emcv_history_no_samples();
 #if defined(EMCV_ADAPTIVE_CV)
     vec4 b = imageLoad(history_b, p);  // this invocation's own store: ordered after it
 #else
@@ -144,7 +145,7 @@ float emcv_adaptive_stored_sigma2(ivec2 p, out uint code, out float frames) {
 #endif
     EmcvAdaptiveState s;
     if (!emcv_adaptive_decode(imageLoad(history_a, p), b, s)) emcv_adaptive_store(p, s);
-    return emcv_adaptive_state_sigma2(p, code, s, frames);
+    return emcv_adaptive_state_sigma2(sub_pixel, s, frames);
 }
 #endif
 

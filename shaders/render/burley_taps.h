@@ -13,6 +13,7 @@
 /// What every tap of pixel p needs: the per-channel shape distance at its material and albedo (d), the widest
 /// channel the radii are drawn with, the pixel's view depth and the screen scale there.
 struct EmcvBurleyPixel {
+    vec3 albedo;  ///< the G-buffer's, read once for every use at the pixel
     vec3 d;
     float d_sample;
     float z;
@@ -22,7 +23,8 @@ struct EmcvBurleyPixel {
 /// The taps' setup at pixel p of scattering material `code`.
 EmcvBurleyPixel emcv_render_burley_pixel(ivec2 p, uint code) {
     EmcvBurleyPixel px;
-    px.d = emcv_sss_shape_distance(materials[code - 1u].mean_free_path.xyz, texelFetch(gbuffer_albedo, p, 0).xyz);
+    px.albedo = texelFetch(gbuffer_albedo, p, 0).xyz;
+    px.d = emcv_sss_shape_distance(materials[code - 1u].mean_free_path.xyz, px.albedo);
     px.d_sample = emcv_sss_widest(px.d);
     px.z = emcv_render_depth(p);
     px.pixels_per_mm = emcv_sss_pixels_per_mm(frame.projection.x, frame.viewport.x, px.z, frame.camera_position.w);

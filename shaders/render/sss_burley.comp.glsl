@@ -44,9 +44,13 @@ layout(r32ui, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_COUNT)) writeonly unifor
 shared uint tile_sample_sum;
 shared uint tile_sample_max;
 #if defined(EMCV_BURLEY_ADAPTIVE)
-// What the history update of this invocation's pixel reads after the tile's noise test (scatter leaves it).
+// What the history update of this invocation's pixel reads after the tile's noise test, and the planning of the
+// next frame after it (scatter leaves them: every G-buffer value read once).
 vec3 pending_scattered = vec3(0.0f);
 vec3 pending_unscattered = vec3(0.0f);
+vec3 pending_albedo = vec3(0.0f);
+uint pending_code = 0u;  // 0: off screen, or the pixel does not scatter
+bool pending_sub_pixel = false;
 #endif
 
 #if defined(EMCV_BURLEY_ADAPTIVE)
@@ -132,12 +136,11 @@ void sort_tile_by_count(inout ivec2 p) {
 /// and the budget block as that pass would have left them, bit for bit. p: the pixel this invocation sampled
 /// (sort_tile_by_count), at local index assigned_local. Every invocation calls it, in uniform control flow.
 void plan_next_frame(ivec2 p) {
-    uint code;
     float frames;
-    float own = emcv_adaptive_stored_sigma2(p, code, frames);
-    emcv_adaptive_share_sigma2(assigned_local, own, code, frames);
+    float own = emcv_adaptive_stored_sigma2(p, pending_code, pending_sub_pixel, frames);
+    emcv_adaptive_share_sigma2(assigned_local, own, pending_code, frames);
     ivec2 l = ivec2(int(assigned_local % uint(EMCV_RENDER_TILE_SIZE)), int(assigned_local / uint(EMCV_RENDER_TILE_SIZE)));
-    if (code != 0u) emcv_adaptive_allocate(p, l, own, code);
+    if (pending_code != 0u) emcv_adaptive_allocate(p, l, own, pending_code);
     emcv_budget_finish_group(gl_LocalInvocationIndex, gl_NumWorkGroups.x * gl_NumWorkGroups.y);
 }
 #endif
@@ -187,6 +190,9 @@ uint scatter(ivec2 p) {
     // pass this replaced used to read); main pushes it once the tile's noise test is done.
     pending_scattered = imageLoad(out_scattered, p).xyz;
     pending_unscattered = centre;
+    pending_albedo = px.albedo;
+    pending_code = code;
+    pending_sub_pixel = emcv_adaptive_sub_pixel_kernel(px.d_sample, px.pixels_per_mm);
 #endif
     return n;
 }
@@ -207,7 +213,7 @@ void main() {
 #endif
     uint n = scatter(p);
 #if defined(EMCV_BURLEY_ADAPTIVE)
-    emcv_adaptive_update_tile(p, pending_scattered, pending_unscattered, n);
+    emcv_adaptive_update_tile(p, pending_scattered, pending_unscattered, pending_albedo, n);
 #endif
     // Sample statistics reduced per tile in shared memory, then one global atomic per tile (not per pixel).
     atomicAdd(tile_sample_sum, n);

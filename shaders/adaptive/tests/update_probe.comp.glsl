@@ -22,5 +22,6 @@ void main() {
     uint n = scatters ? imageLoad(taken_samples, p).x : 0u;
     vec3 scattered = scatters ? texelFetch(scattered_diffuse, p, 0).xyz : vec3(0.0f);
     vec3 unscattered = scatters ? texelFetch(lit_diffuse, p, 0).xyz : vec3(0.0f);
-    emcv_adaptive_update_tile(p, scattered, unscattered, n);
+    vec3 albedo = scatters ? texelFetch(gbuffer_albedo, p, 0).xyz : vec3(0.0f);
+    emcv_adaptive_update_tile(p, scattered, unscattered, albedo, n);
 }
