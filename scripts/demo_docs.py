@@ -83,6 +83,11 @@ def part_passes(demo, tmp):
     for scene in ["light-off", "no-sss"]:
         out, _, cmd = run(demo, ["--scene", scene, "--method", "diffuse,burley-16,separable-17", "--print-passes"])
         blocks.append(f"`{cmd}`\n\n```text\n{out.rstrip()}\n```")
+    # The adaptive methods under a budget: the samples pass where no earlier frame planned the frame (the first
+    # frame under light-off's still camera; every frame under moving's).
+    for scene in ["light-off", "moving"]:
+        out, _, cmd = run(demo, ["--scene", scene, "--method", "cv", "--spp-budget", "8", "--print-passes"])
+        blocks.append(f"`{cmd}`\n\n```text\n{out.rstrip()}\n```")
     return "\n\n".join(blocks)
 
 
