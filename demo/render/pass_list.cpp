@@ -107,10 +107,7 @@ const std::vector<planned_pass>& frame_planner::plan(int frame, const std::vecto
             }
         }
     }
-    if (!scatters_) {  // no burley pass planned the next frame, and no history was updated here
-        planned_by_previous_ = false;
-        planned_frame_ = -1;
-    }
+    if (!scatters_) planned_frame_ = -1;  // no burley pass planned the next frame, and no history was updated here
     passes_.push_back({pass_id::composite, 0, 0});
     // The reference is the converged image an engine's resolve would converge to: it is compared raw.
     if (resolve_ == resolve_mode::taa && m_.type != method::kind::reference) passes_.push_back({pass_id::resolve, 0, 0});

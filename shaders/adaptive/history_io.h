@@ -9,6 +9,7 @@
 #include "emcv/port/sss.h"
 #include "adaptive/bindings.h"
 #include "adaptive/budget_block.h"
+#include "render/burley_taps.h"
 #include "render/gbuffer_read.h"
 
 // Coherent: under a quality target the burley pass plans a pixel's history in one thread and, after sorting the
@@ -114,12 +115,10 @@ bool emcv_adaptive_sub_pixel_kernel(float widest_d, float pixels_per_mm) {
 #endif
 }
 
-/// emcv_adaptive_sub_pixel_kernel at scattering pixel p of material `code`, from the G-buffer.
+/// emcv_adaptive_sub_pixel_kernel at scattering pixel p of material `code`, from the taps' setup there.
 bool emcv_adaptive_sub_pixel(ivec2 p, uint code) {
-    vec3 d = emcv_sss_shape_distance(materials[code - 1u].mean_free_path.xyz, texelFetch(gbuffer_albedo, p, 0).xyz);
-    return emcv_adaptive_sub_pixel_kernel(emcv_sss_widest(d), emcv_sss_pixels_per_mm(frame.projection.x, frame.viewport.x,
-                                                                                       emcv_render_depth(p),
-                                                                                       frame.camera_position.w));
+    EmcvBurleyPixel px = emcv_render_burley_pixel(p, code);
+    return emcv_adaptive_sub_pixel_kernel(px.d_sample, px.pixels_per_mm);
 }
 
 /// A pixel's diffuse as displayed before the tonemap (albedo * irradiance * exposure), as gamma luminance: the

@@ -18,6 +18,7 @@
 // round-to-nearest of the same fp32 value, allowed to differ by one half ulp where a rounding mode or a tie
 // differs; nothing accumulates because each frame starts both sides from the GPU's stored state.
 #include <catch2/catch_test_macros.hpp>
+#include <catch2/matchers/catch_matchers_string.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -604,6 +605,20 @@ TEST_CASE("a poisoned history texel (NaN, Inf, negative variance) is reset and n
             }
         }
     }
+    CHECK(messenger.error_count() == 0);
+}
+
+TEST_CASE("only a budget's burley pass plans the next frame: asked under a quality target, the history refuses by name") {
+    emcv::gl::context ctx = emcv::test::context_or_skip();
+    emcv::gl::debug_messenger messenger;
+    history quality(emcv::demo::method{kind::cv, 0}, width, height, shader_options(), emcv_test::shader_dir());
+    REQUIRE_FALSE(quality.budget_mode());
+    CHECK_THROWS_WITH(quality.use_burley(true), Catch::Matchers::ContainsSubstring("only a budget plans"));
+    quality.use_burley(false);  // the plain program is there
+    emcv::gl::preprocess_options options = shader_options();
+    options.defines.emplace_back("EMCV_HISTORY_SPP_BUDGET", "4.0f");
+    history budget(emcv::demo::method{kind::cv, 0}, width, height, options, emcv_test::shader_dir());
+    budget.use_burley(true);  // built on first use
     CHECK(messenger.error_count() == 0);
 }
 
