@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "program.hpp"
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,11 @@ shader_handle compile_shader(GLenum stage, const preprocessed_source& source) {
                            source.rewrite_log(shader_log(s.id())));
     }
     return s;
+}
+
+void program::use() const {
+    if (!handle_.id()) throw std::logic_error("gl::program: use() of a program that was never built");
+    glUseProgram(handle_.id());
 }
 
 program program::compute(const preprocessed_source& source) {

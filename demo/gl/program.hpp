@@ -20,8 +20,11 @@ public:
     static program graphics(const std::filesystem::path& vertex, const std::filesystem::path& fragment,
                             const preprocess_options& options);
 
+    /// 0 for a program never built.
     GLuint id() const noexcept { return handle_.id(); }
-    void use() const { glUseProgram(handle_.id()); }
+    /// glUseProgram; throws std::logic_error for a program never built (it would bind no program, and the next
+    /// dispatch or draw would fail with a bare GL error).
+    void use() const;
 
 private:
     program_handle handle_;

@@ -42,7 +42,10 @@ std::filesystem::path shader_source_dir(const std::filesystem::path& option, con
                                         const std::filesystem::path& compiled);
 
 /// Preprocesses the file at `path`. Throws shader_error for a missing file, an unresolved include or an
-/// include cycle. `#pragma once` and #ifndef include guards are both honoured (guards by the GLSL compiler).
+/// include cycle. `#pragma once` and #ifndef include guards are both honoured: a guarded file (its first
+/// directive `#ifndef X`, then `#define X`, its last the matching `#endif`) is left out where its macro is
+/// certainly defined, that is where its first inclusion lay in the same #if branches (the preprocessor does not
+/// evaluate conditions) and nothing #undef'd the macro; elsewhere the GLSL compiler drops it by the guard.
 preprocessed_source preprocess_file(const std::filesystem::path& path, const preprocess_options& options);
 
 }  // namespace emcv::gl

@@ -66,10 +66,11 @@ struct renderer::impl {
     bool resolved = false;  // the last frame ended with the resolve pass: resolved_display holds what is shown
 
     impl(const scene& sc, method me, render_options op)
-        : s(sc), m(me), o(validated(std::move(op))), shaders(make_shader_setup(o)), programs(make_pass_programs(shaders, o.resolve)),
+        : s(sc), m(me), o(validated(std::move(op))), shaders(make_shader_setup(o)),
           res(make_gpu_resources(s, m, o.width, o.height)), planner(s, m, o.width, o.height, o.resolve, sampling_mode_of(o.defines), o.jitter), constants(s),
           light_scale(s.lights.size(), 1.0f), stamps(make_timestamps(o.timing_mode)) {
-        make_history();
+        prepare_pass_programs(programs, shaders, s, m, o.resolve);
+        make_history(m);
         if (o.resolve == resolve_mode::taa) make_resolve_targets(res, !o.jitter);
         for (std::size_t id = 0; id < pass_id_count; ++id)
             slot_names.emplace_back(pass_base_name(static_cast<pass_id>(id)));
@@ -77,11 +78,14 @@ struct renderer::impl {
             slot_names.push_back(pass_name(s, {pass_id::shadow, res.shadow_lights[layer], layer}));
     }
 
-    void make_history() {
-        history.reset();
+    /// A fresh history for method `next` (none for a method without one). Built before the old one goes: a
+    /// program that does not compile leaves the renderer as it was.
+    void make_history(const method& next) {
+        std::optional<adaptive::history> made;
+        if (is_adaptive(next)) made.emplace(next, o.width, o.height, shaders.preprocess, shaders.shader_dir);
+        history = std::move(made);
         keeps_gbuffer = false;  // the next frame starts fresh
-        if (is_adaptive(m)) {
-            history.emplace(m, o.width, o.height, shaders.preprocess, shaders.shader_dir);
+        if (history) {
             make_previous_gbuffer(res);
             previous_gbuffer_usable = true;  // perhaps another method's: forgotten before the next frame
         }
@@ -209,11 +213,14 @@ const frame_stats& renderer::render(int frame) { return p_->render(frame); }
 std::vector<frame_times> renderer::take_times(bool wait) { return p_->take_times(wait); }
 
 void renderer::set_method(const method& m) {
+    // First the programs, which may not compile: then the renderer keeps its method (a program once built is
+    // kept, which harms nothing).
+    prepare_pass_programs(p_->programs, p_->shaders, p_->s, m, p_->o.resolve);
+    p_->make_history(m);
     p_->m = m;
     p_->planner = frame_planner(p_->s, m, p_->o.width, p_->o.height, p_->o.resolve, sampling_mode_of(p_->o.defines),
                                 p_->o.jitter);
     upload_materials(p_->res, p_->s, m);  // separable kernels follow the tap count
-    p_->make_history();
     if (p_->o.resolve == resolve_mode::taa) forget_resolve_history(p_->res);  // another method's image
 }
 

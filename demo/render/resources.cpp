@@ -206,18 +206,22 @@ shader_setup make_shader_setup(const render_options& o) {
     return out;
 }
 
-pass_programs make_pass_programs(const shader_setup& shaders, resolve_mode resolve) {
+void prepare_pass_programs(pass_programs& p, const shader_setup& shaders, const scene& s, const method& m,
+                           resolve_mode resolve) {
     const gl::preprocess_options& pre = shaders.preprocess;
     const fs::path dir = shaders.shader_dir / "render";
-    pass_programs p;
-    p.gbuffer = gl::program::graphics(dir / "gbuffer.vert.glsl", dir / "gbuffer.frag.glsl", pre);
-    p.shadow = gl::program::graphics(dir / "shadow.vert.glsl", dir / "shadow.frag.glsl", pre);
-    p.lighting = gl::program::compute(dir / "lighting.comp.glsl", pre);
-    p.burley = gl::program::compute(dir / "sss_burley.comp.glsl", pre);
-    p.separable = gl::program::compute(dir / "sss_separable.comp.glsl", pre);
-    p.composite = gl::program::compute(dir / "composite.comp.glsl", pre);
-    if (resolve == resolve_mode::taa) p.resolve = gl::program::compute(dir / "resolve.comp.glsl", pre);
-    return p;
+    const auto compute = [&](gl::program& program, const char* file) {
+        if (!program.id()) program = gl::program::compute(dir / file, pre);
+    };
+    if (!p.gbuffer.id()) p.gbuffer = gl::program::graphics(dir / "gbuffer.vert.glsl", dir / "gbuffer.frag.glsl", pre);
+    if (!p.shadow.id() && !shadow_casters(s).empty())
+        p.shadow = gl::program::graphics(dir / "shadow.vert.glsl", dir / "shadow.frag.glsl", pre);
+    compute(p.lighting, "lighting.comp.glsl");
+    // The adaptive methods' burley program is their history's (adaptive::history), built with their define.
+    if (row_of(m).passes == sss_passes::burley) compute(p.burley, "sss_burley.comp.glsl");
+    if (row_of(m).passes == sss_passes::separable) compute(p.separable, "sss_separable.comp.glsl");
+    compute(p.composite, "composite.comp.glsl");
+    if (resolve == resolve_mode::taa) compute(p.resolve, "resolve.comp.glsl");
 }
 
 void gpu_resources::draw_objects(bool with_albedo_maps) const {

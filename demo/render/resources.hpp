@@ -24,7 +24,9 @@ class history;  // demo/render/adaptive/history.hpp
 /// Shadow maps are square, this many texels a side.
 inline constexpr int shadow_resolution = 1024;
 
-/// The GLSL programs of the passes (the adaptive passes' own live in adaptive::history).
+/// The GLSL programs of the passes (the adaptive passes' own live in adaptive::history). Only the programs of
+/// passes the scene and method can record are built (prepare_pass_programs); the others stay empty, and using
+/// one throws.
 struct pass_programs {
     gl::program gbuffer, shadow, lighting, burley, separable, composite;
     gl::program resolve;  ///< --resolve taa only
@@ -37,7 +39,12 @@ struct shader_setup {
     std::filesystem::path shader_dir;
 };
 shader_setup make_shader_setup(const render_options& o);
-pass_programs make_pass_programs(const shader_setup& shaders, resolve_mode resolve);
+/// Builds those of p's programs that method m can record on scene s and p lacks: the G-buffer, lighting and
+/// composite passes always; the shadow pass where a light casts shadows; burley-N's and the reference's burley
+/// pass, or the separable passes; the resolve under resolve taa. A method switch calls it again for the new
+/// method (a program once built is kept). A renderer compiles no program it never dispatches.
+void prepare_pass_programs(pass_programs& p, const shader_setup& shaders, const scene& s, const method& m,
+                           resolve_mode resolve);
 
 struct draw_call {
     GLsizei index_count = 0;

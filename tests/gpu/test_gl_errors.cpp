@@ -122,6 +122,13 @@ TEST_CASE("a missing shader file is a clear error before any GL call") {
                       ContainsSubstring("shader file not found") && ContainsSubstring("missing.comp.glsl"));
 }
 
+TEST_CASE("using a program that was never built is a clear error, not a bare GL error") {
+    // no context needed: use() refuses before glUseProgram(0), after which the next dispatch would fail unnamed
+    const emcv::gl::program never_built;
+    CHECK(never_built.id() == 0u);
+    CHECK_THROWS_WITH(never_built.use(), ContainsSubstring("never built"));
+}
+
 TEST_CASE("KHR_debug counts GL errors so that programs can exit non-zero", "[needs-context]") {
     auto ctx = emcv::test::context_or_skip();
     emcv::gl::debug_messenger debug;

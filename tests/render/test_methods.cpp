@@ -2,6 +2,7 @@
 // Every method renders every scene (the built-in scenes, and scenes built in code) without a GL error, NaN or
 // Inf, with display values in [0, 1], at 64x48 on llvmpipe.
 #include <catch2/catch_test_macros.hpp>
+#include <catch2/matchers/catch_matchers_string.hpp>
 
 #include <algorithm>
 #include <cstdlib>
@@ -139,4 +140,52 @@ TEST_CASE("SSS tiles dispatched in many rows render the same image as in one row
     }
     fs::remove_all(copy);
     CHECK(messenger.error_count() == 0);
+}
+
+TEST_CASE("a renderer compiles only the programs of the passes its scene and method can record") {
+    // A copy of shaders/ whose separable, shadow and resolve programs do not compile: a renderer that never
+    // records those passes is built and renders; one that can record them fails naming the file, at construction
+    // or at the method switch that first needs it. Compiling a program no pass dispatches cost a renderer's
+    // construction a third of its time.
+    emcv::gl::context ctx = emcv::test::context_or_skip();
+    emcv::gl::debug_messenger messenger;
+    namespace fs = std::filesystem;
+    const fs::path copy = fs::temp_directory_path() / "emcv-test-render-unused-programs";
+    fs::remove_all(copy);
+    fs::copy(emcv_test::shader_dir(), copy, fs::copy_options::recursive);
+    const std::vector<std::string> broken{"render/sss_separable.comp.glsl", "render/shadow.frag.glsl",
+                                         "render/resolve.comp.glsl"};
+    for (const std::string& file : broken) std::ofstream(copy / file, std::ios::app) << "\nnot glsl at all\n";
+
+    const scene plane = emcv::test::lit_sss_plane(1.0f);
+    REQUIRE(shadow_casters(plane).empty());
+    render_options options;
+    options.width = 32;
+    options.height = 24;
+    options.shader_dir = copy;
+    for (const method& m : {method{method::kind::diffuse, 0}, method{method::kind::burley, 4}, method{method::kind::cv, 0}}) {
+        INFO(m.name());
+        renderer r(plane, m, options);
+        CHECK(r.render(0).times.passes.size() >= 3);
+    }
+    CHECK(messenger.error_count() == 0);  // from here on each failed compile also reports a GL error
+    const auto fails_naming = [](const std::string& file) {
+        return Catch::Matchers::ContainsSubstring(fs::path(file).filename().string());
+    };
+    CHECK_THROWS_WITH(renderer(plane, method{method::kind::separable, 11}, options), fails_naming(broken[0]));
+    CHECK_THROWS_WITH(renderer(emcv::test::sphere_on_floor(), method{method::kind::burley, 4}, options),
+                      fails_naming(broken[1]));
+    render_options taa = options;
+    taa.resolve = resolve_mode::taa;
+    CHECK_THROWS_WITH(renderer(plane, method{method::kind::burley, 4}, taa), fails_naming(broken[2]));
+    {  // a method switch builds what the new method records
+        renderer r(plane, method{method::kind::burley, 4}, options);
+        r.render(0);
+        CHECK_THROWS_WITH(r.set_method(method{method::kind::separable, 11}), fails_naming(broken[0]));
+        CHECK(r.current_method() == method{method::kind::burley, 4});  // kept: the switch failed before it
+        const std::size_t errors = messenger.error_count();
+        CHECK(r.render(1).times.passes.size() >= 3);
+        CHECK(messenger.error_count() == errors);
+    }
+    fs::remove_all(copy);
 }

@@ -170,6 +170,49 @@ TEST_CASE("#version and #extension are hoisted, defines injected, #pragma once h
     CHECK(r.exit_code == 0);
 }
 
+TEST_CASE("a guarded header is left out only where its macro is certainly defined: the compiler would drop it") {
+    // guarded.h: #ifndef GUARDED_H / #define GUARDED_H ... #endif. The preprocessor does not evaluate #if: it
+    // leaves a later inclusion out only when the first one lay in the same branches, so that the first was
+    // reached wherever the later one is.
+    const fs::path dir = output_dir / "include_guards";
+    fs::create_directories(dir);
+    preprocess_options o = project_options();
+    o.include_dirs.push_back(source_dir / "tests/shaders/data");
+    const auto copies = [&](const std::string& name, const std::string& body, const preprocess_options& options) {
+        const fs::path main = dir / (name + ".comp.glsl");
+        std::ofstream(main) << "#version 450 core\n" << body << "layout(local_size_x = 1) in;\nvoid main() {}\n";
+        const std::string text = preprocess_file(main, options).text;
+        std::size_t n = 0;
+        for (std::size_t at = text.find("float guarded_value()"); at != std::string::npos;
+             at = text.find("float guarded_value()", at + 1))
+            ++n;
+        return n;
+    };
+    const std::string twice = "#include \"guarded.h\"\n#include \"guarded.h\"\n";
+    CHECK(copies("unconditional", twice, o) == 1);
+    CHECK(copies("same_branch", "#ifdef SOMETHING\n" + twice + "#endif\n", o) == 1);
+    CHECK(copies("inner_branch", "#ifdef A\n#include \"guarded.h\"\n#ifdef B\n#include \"guarded.h\"\n#endif\n#endif\n", o) == 1);
+    // the first inclusion may not have been reached where the second is: both kept
+    CHECK(copies("after_branch", "#if defined(NEVER)\n#include \"guarded.h\"\n#endif\n#include \"guarded.h\"\n", o) == 2);
+    CHECK(copies("else_branch", "#ifdef X\n#include \"guarded.h\"\n#else\n#include \"guarded.h\"\n#endif\n", o) == 2);
+    // kept where the first inclusion may not have been reached, left out after one that certainly was
+    CHECK(copies("widened", "#ifdef X\n#include \"guarded.h\"\n#endif\n" + twice + "#include \"guarded.h\"\n", o) == 2);
+    CHECK(copies("undefined", "#include \"guarded.h\"\n#undef GUARDED_H\n#include \"guarded.h\"\n", o) == 2);
+    // outer_guarded.h includes guarded.h inside its own guard: certain on its first inclusion...
+    CHECK(copies("nested", "#include \"outer_guarded.h\"\n#include \"guarded.h\"\n", o) == 1);
+    // ...but not where its macro was defined before (the compiler drops outer_guarded.h, and guarded.h with it)
+    CHECK(copies("nested_defined", "#define OUTER_GUARDED_H\n#include \"outer_guarded.h\"\n#include \"guarded.h\"\n", o) == 2);
+    preprocess_options injected = o;
+    injected.defines = {{"OUTER_GUARDED_H", "1"}};
+    CHECK(copies("nested_injected", "#include \"outer_guarded.h\"\n#include \"guarded.h\"\n", injected) == 2);
+    // what is kept still compiles: the compiler drops the second copy by its guard
+    const fs::path flat = write_preprocessed("include_guards/after_branch.flat.comp",
+                                             preprocess_file(dir / "after_branch.comp.glsl", o).text);
+    const emcv_test::command_result r = run(std::string(EMCV_GLSLANG_VALIDATOR) + " -S comp " + flat.string());
+    INFO(r.output());
+    CHECK(r.exit_code == 0);
+}
+
 TEST_CASE("a missing shader file is a clear error") {
     REQUIRE_THROWS_AS(preprocess_file(emcv_test::shader_dir() / "no_such_shader.comp.glsl", project_options()),
                       emcv::gl::shader_error);
