@@ -15,6 +15,7 @@
 #include "gl/debug.hpp"
 #include "headless_run.hpp"
 #include "heatmap.hpp"
+#include "image/image_file.hpp"
 #include "render/tunables.hpp"
 #include "light_change.hpp"
 #include "listings.hpp"
@@ -74,6 +75,15 @@ int main(int argc, char** argv) {
     if (o.print_passes) {
         print_passes(std::cout, s, o.methods, frames, o.width, o.height, o.resolve, sampling_mode_of(o.defines));
         return 0;
+    }
+
+    if (o.out && !o.no_frames && !o.window) {  // the window writes no file
+        // Frames are image files: refuse before rendering or creating anything when they cannot be written.
+        try {
+            emcv::image::require_image_files();
+        } catch (const emcv::image::image_error& e) {
+            return fail(1, std::string("--out: ") + e.what());
+        }
     }
 
     try {

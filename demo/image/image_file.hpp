@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: MIT
-// Image files as float buffers, through OpenImageIO. Values are stored as they are, with no colour transfer:
+// Image files as float buffers, through OpenImageIO (loaded on the first file operation: oiio_module.hpp). Values are stored as they are, with no colour transfer:
 // an EXR keeps the floats (linear data stays linear), a PNG holds the same values clamped to [0, 1] and
 // quantised to 8 bits, so what goes into a PNG must already be display-encoded (the renderer's display image
 // is; a linear image is not and belongs in an EXR).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <stdexcept>
@@ -26,7 +28,15 @@ public:
 };
 
 /// One value as a PNG stores it: clamped to [0, 1], then round(v * 255). NaN stores 0.
-std::uint8_t quantise_unorm8(float value) noexcept;
+inline std::uint8_t quantise_unorm8(float value) noexcept {
+    if (!(value > 0.0f)) return 0;  // also NaN, which std::clamp would pass through
+    return static_cast<std::uint8_t>(std::lround(std::min(value, 1.0f) * 255.0f));
+}
+
+/// Makes sure image files can be read and written here: loads the OpenImageIO module now (oiio_module.hpp), so
+/// that a run which will write images can refuse before it renders or creates anything. Throws image_error
+/// naming the problem (the module missing or broken; a build without OpenImageIO).
+void require_image_files();
 
 /// Writes the image, the format following the extension: ".exr" the floats unchanged, ".png" every channel
 /// (alpha included) through quantise_unorm8, no transfer function. Writes to a temporary sibling and renames

@@ -402,6 +402,34 @@ TEST_CASE("emcv-demo --resolve: taa records the resolve pass and writes the show
     CHECK_FALSE(fs::exists(none_out));
 }
 
+TEST_CASE("OpenImageIO is loaded only by a run that reads or writes an image file", "[app][cli][gl][image-files]") {
+    // The image files go through a module loaded on first use (demo/image/oiio_module.hpp): the dynamic
+    // loader's log (LD_DEBUG=libs, on stderr) names every library a process loads.
+    const auto loads_oiio = [](const emcv_test::command_result& r) {
+        return r.err.find("libOpenImageIO") != std::string::npos;
+    };
+    const emcv_test::command_result usage = run_demo("--size 0x0", "LD_DEBUG=libs");
+    CHECK(usage.exit_code == 2);
+    CHECK_FALSE(loads_oiio(usage));
+    const std::string run = "--scene '" + data_dir + "/tiny.json' --size 32x32 --frames 1 --method burley-4";
+    const emcv_test::command_result metrics =
+        run_demo(run + " --no-frames --out '" + (scratch_dir("oiio-metrics") / "out").string() + "'", "LD_DEBUG=libs");
+    if (emcv_test::no_display(metrics)) SKIP("no OpenGL display");
+    CHECK(metrics.exit_code == 0);
+    CHECK_FALSE(loads_oiio(metrics));
+    const emcv_test::command_result frames =
+        run_demo(run + " --out '" + (scratch_dir("oiio-frames") / "out").string() + "'", "LD_DEBUG=libs");
+    CHECK(frames.exit_code == 0);
+    CHECK(loads_oiio(frames));
+}
+
+TEST_CASE("a missing OpenImageIO module: one line naming it, exit 1, nothing written", "[app][cli][image-files]") {
+    // Checked before any context or file is made: no display needed.
+    const fs::path out = scratch_dir("no-oiio-module") / "out";
+    check_rejected("--scene '" + data_dir + "/tiny.json' --size 32x32 --frames 1 --method burley-4", 1,
+                   "cannot load the OpenImageIO module", out, "EMCV_IMAGE_MODULE=/nonexistent/libemcv_image_oiio.so");
+}
+
 TEST_CASE("the metrics-only flag (--no-frames) writes metrics.csv and metrics.json and no frame", "[app][cli][gl]") {
     const fs::path out = scratch_dir("no-frames") / "out";
     const emcv_test::command_result r = run_demo("--scene '" + data_dir +
