@@ -30,6 +30,15 @@ std::vector<scene> scenes_under_test() {
     return scenes;
 }
 
+/// A fresh copy of shaders/ in the temporary folder under `name`, for a test that edits it (the renderer reads
+/// it through render_options::shader_dir).
+std::filesystem::path fresh_shader_copy(const std::string& name) {
+    const std::filesystem::path copy = std::filesystem::temp_directory_path() / name;
+    std::filesystem::remove_all(copy);
+    std::filesystem::copy(emcv_test::shader_dir(), copy, std::filesystem::copy_options::recursive);
+    return copy;
+}
+
 }  // namespace
 
 TEST_CASE("every method renders every scene without GL errors or non-finite values", "[image-files]") {
@@ -110,9 +119,7 @@ TEST_CASE("SSS tiles dispatched in many rows render the same image as in one row
     emcv::gl::context ctx = emcv::test::context_or_skip();
     emcv::gl::debug_messenger messenger;
     namespace fs = std::filesystem;
-    const fs::path copy = fs::temp_directory_path() / "emcv-test-render-tile-rows";
-    fs::remove_all(copy);
-    fs::copy(emcv_test::shader_dir(), copy, fs::copy_options::recursive);
+    const fs::path copy = fresh_shader_copy("emcv-test-render-tile-rows");
     const fs::path bindings = copy / "render" / "bindings.h";
     std::string text;
     {
@@ -150,9 +157,7 @@ TEST_CASE("a renderer compiles only the programs of the passes its scene and met
     emcv::gl::context ctx = emcv::test::context_or_skip();
     emcv::gl::debug_messenger messenger;
     namespace fs = std::filesystem;
-    const fs::path copy = fs::temp_directory_path() / "emcv-test-render-unused-programs";
-    fs::remove_all(copy);
-    fs::copy(emcv_test::shader_dir(), copy, fs::copy_options::recursive);
+    const fs::path copy = fresh_shader_copy("emcv-test-render-unused-programs");
     const std::vector<std::string> broken{"render/sss_separable.comp.glsl", "render/shadow.frag.glsl",
                                          "render/resolve.comp.glsl"};
     for (const std::string& file : broken) std::ofstream(copy / file, std::ios::app) << "\nnot glsl at all\n";
