@@ -77,15 +77,6 @@ int main(int argc, char** argv) {
         return 0;
     }
 
-    if (o.out && !o.no_frames && !o.window) {  // the window writes no file
-        // Frames are image files: refuse before rendering or creating anything when they cannot be written.
-        try {
-            emcv::image::require_image_files();
-        } catch (const emcv::image::image_error& e) {
-            return fail(1, std::string("--out: ") + e.what());
-        }
-    }
-
     try {
         emcv::gl::context_options co;
         if (o.window) {
@@ -100,6 +91,8 @@ int main(int argc, char** argv) {
             const int shown = run_window(context, s, o, o.frames);
             std::cout << "window: " << shown << " frames of " << s.name << " on " << context.renderer() << '\n';
         } else {
+            // Frames are image files: refuse before rendering or creating anything when they cannot be written.
+            if (o.out && !o.no_frames) emcv::image::require_image_files();
             const timing clock = resolve_timing(o.timing, context.renderer());
             const run_result result = run_headless(s, o, frames, clock);
             std::vector<std::string> notes;
@@ -148,6 +141,8 @@ int main(int argc, char** argv) {
         // "(no display)": no platform could even open a display; tests skip GPU cases on that phrase.
         return fail(1, std::string("no OpenGL context") + (e.no_display() ? " (no display)" : "") + ": " + e.what());
     } catch (const output_error& e) {
+        return fail(1, std::string("--out: ") + e.what());
+    } catch (const emcv::image::image_error& e) {
         return fail(1, std::string("--out: ") + e.what());
     } catch (const std::exception& e) {
         return fail(1, e.what());

@@ -151,7 +151,7 @@ TEST_CASE("no OpenGL platform: one line, exit 1, nothing written", "[app][cli]")
                    "env -u DISPLAY -u WAYLAND_DISPLAY EMCV_GL_PLATFORMS=window");
 }
 
-TEST_CASE("an image holding NaN or Inf stops the run: one line, exit 1, nothing written", "[app][cli][gl]") {
+TEST_CASE("an image holding NaN or Inf stops the run: one line, exit 1, nothing written", "[app][cli][gl][image-files]") {
     // A valid scene whose light (3e38 x colour 3) overflows fp32 radiance: metrics would silently be NaN.
     const fs::path out = scratch_dir("overflow") / "out";
     const emcv_test::command_result r = run_demo("--scene '" + data_dir +
@@ -359,7 +359,7 @@ TEST_CASE("emcv-demo --timing gpu: each frame's times arrive late and land on th
     CHECK(bad.err == "emcv-demo: --timing: expected auto, wall or gpu, got 'fast'\n");
 }
 
-TEST_CASE("emcv-demo --resolve: taa records the resolve pass and writes the shown frames, none neither; --jitter needs taa", "[app][cli][gl]") {
+TEST_CASE("emcv-demo --resolve: taa records the resolve pass and writes the shown frames, none neither; --jitter needs taa", "[app][cli][gl][image-files]") {
     for (const char* mode : {"taa", "none"}) {
         INFO(mode);
         const bool taa = std::string(mode) == "taa";
@@ -423,11 +423,14 @@ TEST_CASE("OpenImageIO is loaded only by a run that reads or writes an image fil
     CHECK(loads_oiio(frames));
 }
 
-TEST_CASE("a missing OpenImageIO module: one line naming it, exit 1, nothing written", "[app][cli][image-files]") {
-    // Checked before any context or file is made: no display needed.
+TEST_CASE("a missing OpenImageIO module: one line naming it, exit 1, nothing written", "[app][cli][gl][image-files]") {
+    // Checked once the context exists (a missing GL is named first), before anything is rendered or written.
     const fs::path out = scratch_dir("no-oiio-module") / "out";
-    check_rejected("--scene '" + data_dir + "/tiny.json' --size 32x32 --frames 1 --method burley-4", 1,
-                   "cannot load the OpenImageIO module", out, "EMCV_IMAGE_MODULE=/nonexistent/libemcv_image_oiio.so");
+    const std::string args = "--scene '" + data_dir + "/tiny.json' --size 32x32 --frames 1 --method burley-4";
+    const std::string missing = "EMCV_IMAGE_MODULE=/nonexistent/libemcv_image_oiio.so";
+    const emcv_test::command_result r = run_demo(args + " --out '" + out.string() + "'", missing);
+    if (emcv_test::no_display(r)) SKIP("no OpenGL display: " << r.err);
+    check_rejected(args, 1, "cannot load the OpenImageIO module", out, missing);
 }
 
 TEST_CASE("the metrics-only flag (--no-frames) writes metrics.csv and metrics.json and no frame", "[app][cli][gl]") {
