@@ -22,6 +22,14 @@ std::string_view trim_left(std::string_view s) {
 
 bool is_identifier_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
 
+/// The identifier `text` starts with (empty if none): a directive's name, or its operand's macro (#ifndef,
+/// #define, #undef).
+std::string_view first_identifier(std::string_view text) {
+    std::size_t n = 0;
+    while (n < text.size() && is_identifier_char(text[n])) ++n;
+    return text.substr(0, n);
+}
+
 /// Whether `line` is a preprocessor directive: '#', then its name (an identifier) in `name` and what follows
 /// it, trimmed on the left, in `rest`. Views into `line`; nothing is allocated (most lines are not directives,
 /// and every renderer preprocesses every program: this scan was most of a renderer's construction under ASan).
@@ -29,18 +37,9 @@ bool parse_directive(std::string_view line, std::string_view& name, std::string_
     line = trim_left(line);
     if (line.empty() || line[0] != '#') return false;
     line = trim_left(line.substr(1));
-    std::size_t n = 0;
-    while (n < line.size() && is_identifier_char(line[n])) ++n;
-    name = line.substr(0, n);
-    rest = trim_left(line.substr(n));
+    name = first_identifier(line);
+    rest = trim_left(line.substr(name.size()));
     return true;
-}
-
-/// The first identifier of `rest` (a directive's operand: the macro of #ifndef, #define, #undef).
-std::string_view first_identifier(std::string_view rest) {
-    std::size_t n = 0;
-    while (n < rest.size() && is_identifier_char(rest[n])) ++n;
-    return rest.substr(0, n);
 }
 
 bool opens_group(std::string_view name) { return name == "if" || name == "ifdef" || name == "ifndef"; }

@@ -8,7 +8,9 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cctype>
 #include <exception>
+#include <vector>
 
 namespace emcv::image {
 namespace {
