@@ -21,13 +21,8 @@ import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SCRIPT = os.path.join(ROOT, "scripts", "eval", "run_eval.py")
-SKIP = 77
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from script_checks import check, finish, no_gl  # noqa: E402
 
 
 def run_eval(*args):
@@ -94,18 +89,12 @@ def main(build):
 
     r = run_eval("--build", build, "--check-determinism")
     if r.returncode != 0 and "no OpenGL context" in r.stderr:
-        if os.environ.get("EMCV_REQUIRE_GL") == "1":
-            print("EMCV_REQUIRE_GL=1 but the renderer has no OpenGL context: " + r.stderr.strip())
-            return 1
-        print("skipped: no OpenGL context (set EMCV_REQUIRE_GL=1 to make this a failure): " + r.stderr.strip())
-        return SKIP
+        return no_gl(r.stderr.strip())
     print(r.stdout[-2000:])
     check(r.returncode == 0 and "byte-identical" in r.stdout,
           f"--check-determinism passes (got {r.returncode}: {r.stderr.strip()[-1500:]})")
 
-    for f in failures:
-        print("FAILED: " + f)
-    return 1 if failures else 0
+    return finish("test_eval_jobs")
 
 
 if __name__ == "__main__":

@@ -18,9 +18,11 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from script_checks import check, finish  # noqa: E402
+
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 REPORT = os.path.join(ROOT, "scripts", "eval", "gpu_report.py")
-failures = []
 
 EVAL_HEADER = "scene,width,height,sss_scale,method,frame,sss_ms,frame_ms,mean_spp,max_spp,sss_pixels,lights,sampling,timing,resolve\n"
 
@@ -49,11 +51,6 @@ GPU 00000000:00:07.0
         Memory                            : 2619 MHz
         Video                             : 1755 MHz
 """
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
 
 
 def eval_csv(clock, per_method, frames):
@@ -196,9 +193,7 @@ def main():
         check(r.returncode != 0 and "gpu-" in r.stderr and open(bare).read() == "# no blocks\n",
               f"a document without the GPU blocks is refused and unchanged (got {r.returncode}: {r.stderr.strip()})")
 
-    for f in failures:
-        print("FAILED: " + f)
-    return 1 if failures else 0
+    return finish("test_gpu_report")
 
 
 if __name__ == "__main__":

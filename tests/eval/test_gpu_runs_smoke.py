@@ -21,15 +21,10 @@ import tempfile
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 RUNS = os.path.join(ROOT, "scripts", "eval", "gpu_runs.sh")
 REPORT = os.path.join(ROOT, "scripts", "eval", "gpu_report.py")
-SKIP = 77
 COST = ["cost-budget8-gpu", "cost-budget8-wall", "cost-budget16-gpu", "cost-budget16-wall", "cost-quality-gpu"]
 STEPS = ["teaser-48x48", "scaling"] + COST
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from script_checks import check, finish, no_gl  # noqa: E402
 
 
 def block(text, name):
@@ -46,11 +41,7 @@ def main(build):
 
     info = subprocess.run([os.path.join(bin_dir, "emcv-glinfo")], capture_output=True, text=True)
     if info.returncode != 0:
-        if os.environ.get("EMCV_REQUIRE_GL") == "1":
-            print("EMCV_REQUIRE_GL=1 but emcv-glinfo found no OpenGL context: " + info.stderr.strip())
-            return 1
-        print("skipped: no OpenGL context (set EMCV_REQUIRE_GL=1 to make this a failure): " + info.stderr.strip())
-        return SKIP
+        return no_gl("emcv-glinfo: " + info.stderr.strip())
 
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "runs")
@@ -83,9 +74,7 @@ def main(build):
         check(len(rows) == 9 and all("| not judged:" in row and "not measured" not in row for row in rows),
               "every target is measured and, on llvmpipe, not judged: " + "\n".join(rows))
 
-    for f in failures:
-        print("FAILED: " + f)
-    return 1 if failures else 0
+    return finish("test_gpu_runs_smoke")
 
 
 if __name__ == "__main__":

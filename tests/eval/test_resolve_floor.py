@@ -22,12 +22,8 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(
                                 "scripts", "eval"))
 import resolve_floor  # noqa: E402
 
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from script_checks import check, finish  # noqa: E402
 
 
 def simulated_mse(sigma2, e2, w, chains=100000, steps=400, seed=1):
@@ -58,10 +54,7 @@ def main():
         return -10 * math.log10(resolve_floor.model(1.0, ratio, resolve_floor.best_weight(1.0, ratio)))
     check(gain(0.99 * r) > 6.0 > gain(1.01 * r), f"six_db_ratio() = {r:.4f} is where the best gain crosses 6 dB "
                                                  f"(gains {gain(0.99 * r):.4f} and {gain(1.01 * r):.4f})")
-    for f in failures:
-        print("FAILED:", f)
-    print(f"test_resolve_floor: {len(failures)} failure(s)")
-    return 1 if failures else 0
+    return finish("test_resolve_floor")
 
 
 if __name__ == "__main__":
