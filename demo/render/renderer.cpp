@@ -22,7 +22,6 @@ namespace emcv::demo {
 
 namespace {
 
-GLuint div_up(int n, int d) { return static_cast<GLuint>((n + d - 1) / d); }
 
 constexpr int max_size = 8192;
 
@@ -169,7 +168,7 @@ struct renderer::impl {
         const bool visible = planner.shows_sss();
         constants.upload(res, s, m, o, frame, v, visible, planner.scatters(), planner.resolves_sss_noise(), light_scale);
         const frame_context context{res, programs, s, m, history ? &*history : nullptr, frame,
-                                    div_up(o.width, EMCV_RENDER_TILE_SIZE), div_up(o.height, EMCV_RENDER_TILE_SIZE),
+                                    tiles_covering(o.width), tiles_covering(o.height),
                                     planner.scatters()};
         passes::bind_frame_resources(context);
         if (history) history->begin_frame(planner.planned_by_previous());

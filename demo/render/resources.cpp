@@ -22,9 +22,11 @@ namespace emcv::demo {
 
 namespace fs = std::filesystem;
 
-namespace {
+GLuint tiles_covering(int pixels) {
+    return static_cast<GLuint>((pixels + EMCV_RENDER_TILE_SIZE - 1) / EMCV_RENDER_TILE_SIZE);
+}
 
-GLuint div_up(int n, int d) { return static_cast<GLuint>((n + d - 1) / d); }
+namespace {
 
 /// A mipmapped RGBA16F texture from linear RGBA floats (scene textures), or 1x1 white.
 gl::texture_2d make_albedo_map(int width, int height, const float* rgba) {
@@ -291,7 +293,7 @@ gpu_resources make_gpu_resources(const scene& s, const method& m, int width, int
     r.lights_ssbo = make_dynamic_buffer(sizeof(gpu::light_block) * std::max<std::size_t>(s.lights.size(), 1));
     r.stats_ssbo = make_dynamic_buffer(sizeof(gpu::stats_block));
     const std::size_t tile_count =
-        std::size_t{div_up(width, EMCV_RENDER_TILE_SIZE)} * div_up(height, EMCV_RENDER_TILE_SIZE);
+        std::size_t{tiles_covering(width)} * tiles_covering(height);
     r.tiles_ssbo = make_dynamic_buffer(16 + 4 * tile_count);
     return r;
 }

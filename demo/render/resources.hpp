@@ -120,6 +120,10 @@ void forget_resolve_history(gpu_resources& r);
 /// Materials and, for the separable method, their kernels (built on the CPU from each SSS material's profile).
 void upload_materials(gpu_resources& r, const scene& s, const method& m);
 
+/// How many tiles of EMCV_RENDER_TILE_SIZE pixels cover `pixels` along one side: the SSS tile list's length and
+/// the full-screen dispatch's workgroups.
+GLuint tiles_covering(int pixels);
+
 /// What a pass records from: the resources, this frame's scene and method, and the adaptive history.
 struct frame_context {
     gpu_resources& res;

@@ -13,8 +13,9 @@
 #     mode's 30 frames after the switch; then the GPU's clocks (nvidia-smi, where present).
 # steps.txt records each step's seconds, so that the next device session knows what the script costs.
 # Times use emcv-eval's default clock: GPU timestamps on a hardware renderer (--timing auto).
-# --smoke runs every step at 64x64 and one run each (tests/eval/test_gpu_runs.py runs it on llvmpipe): the same
-# commands and files, so that the script is known to run before a GPU session spends its device time on it.
+# --smoke runs every step at 48x48, one run each, over the frames up to 3 after the switch (frame 30)
+# (tests/eval/test_gpu_runs_smoke.py runs it on llvmpipe): the same commands and files, so that the script is known
+# to run before a GPU session spends its device time on it.
 set -euo pipefail
 smoke=0
 if [ "${1:-}" = --smoke ]; then smoke=1; shift; fi
@@ -26,10 +27,12 @@ for exe in emcv-glinfo emcv-demo emcv-eval; do
 done
 if [ "$smoke" = 1 ]; then
   teaser_sizes=(48x48); scaling_sizes=(32x32 48x48); cost_size=48x48; runs=1
+  frames=34; last=33; scaling_frames=4
 else
   teaser_sizes=(1920x1080 3360x1440)
   scaling_sizes=(128x128 256x256 640x360 1280x720 1920x1080 2560x1440 3360x1440 3840x2160)
   cost_size=1920x1080; runs=3
+  frames=60; last=59; scaling_frames=40  # light-off's 60 frames: the 30 from the switch are frames 30-59
 fi
 cd "$(dirname "$0")/../.."
 mkdir -p "$out"
@@ -42,16 +45,17 @@ git describe --always --dirty 2>/dev/null > "$out/commit.txt" || echo "${EMCV_CO
 "$bin/emcv-glinfo" > "$out/glinfo.txt"
 teaser_methods=diffuse,separable-17,burley-16,spvg,cv,cv-notex
 for size in "${teaser_sizes[@]}"; do
-  "$bin/emcv-demo" --scene light-off --method "$teaser_methods" --size "$size" --no-frames \
+  "$bin/emcv-demo" --scene light-off --method "$teaser_methods" --size "$size" --frames "$frames" --no-frames \
     --out "$out/demo-$size" > "$out/demo-$size.txt"
   for run in $(seq "$runs"); do
-    "$bin/emcv-eval" --scene light-off --method "$teaser_methods" --size "$size" > "$out/eval-$size-run$run.csv"
+    "$bin/emcv-eval" --scene light-off --method "$teaser_methods" --size "$size" --frames "$frames" \
+      > "$out/eval-$size-run$run.csv"
   done
   step "teaser-$size"
 done
 for size in "${scaling_sizes[@]}"; do
   "$bin/emcv-eval" --scene light-off --method burley-16,separable-17,spvg,cv,cv-notex --size "$size" \
-    --frames 40 > "$out/scaling-$size.csv"
+    --frames "$scaling_frames" > "$out/scaling-$size.csv"
 done
 step scaling
 python=$(command -v /usr/bin/python3 || command -v python3 || true)
@@ -59,14 +63,14 @@ if [ -n "$python" ]; then
   build=$(realpath --relative-to=. "$(dirname "$bin")")  # the tables' build column: a path within the tree
   for budget in 8 16; do
     for clock in gpu wall; do
-      "$python" scripts/eval/sss_cost.py --build "$build" --runs "$runs" --size "$cost_size" --frames 60 \
+      "$python" scripts/eval/sss_cost.py --build "$build" --runs "$runs" --size "$cost_size" --frames "$frames" \
         --spp-budget "$budget" --timing "$clock" --save-raw "$out/cost-budget$budget-$clock" \
         > "$out/cost-budget$budget-$clock.md"
       step "cost-budget$budget-$clock"
     done
   done
-  "$python" scripts/eval/sss_cost.py --build "$build" --runs "$runs" --size "$cost_size" --frames 60 --first 30 \
-    --last 59 --target-variance 0.0001 --methods spvg,cv,cv-notex,burley-8 --timing gpu \
+  "$python" scripts/eval/sss_cost.py --build "$build" --runs "$runs" --size "$cost_size" --frames "$frames" \
+    --first 30 --last "$last" --target-variance 0.0001 --methods spvg,cv,cv-notex,burley-8 --timing gpu \
     --save-raw "$out/cost-quality-gpu" > "$out/cost-quality-gpu.md"
   step cost-quality-gpu
 else

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""scripts/eval/gpu_runs.sh, the one script a lent GPU machine runs, run whole here at 48x48 (--smoke) on the
+"""scripts/eval/gpu_runs.sh, the one script a lent GPU machine runs, run whole here at 48x48 over 34 frames (--smoke) on the
 built renderer, and its output turned into docs/results.md's GPU blocks (a copy) by scripts/eval/gpu_report.py:
   - every step runs and leaves its files (glinfo, the teaser's emcv-demo metrics and emcv-eval runs, the scaling
     runs, the five equal-samples runs with each run's CSV and settings, steps.txt with each step's seconds);
@@ -62,12 +62,12 @@ def main(build):
         r = subprocess.run(["/usr/bin/python3", REPORT, "--doc", doc, out], capture_output=True, text=True)
         check(r.returncode == 0, f"gpu_report.py reads the runs (got {r.returncode}: {r.stderr.strip()[-1500:]})")
         text = open(doc).read()
-        check("**48x48**, light-off frames 30-59" in block(text, "gpu-teaser") and
+        check("**48x48**, light-off frames 30-59" in block(text, "gpu-teaser") and "| cv |" in block(text, "gpu-teaser") and
               "clock wall" in block(text, "gpu-teaser"), "the teaser block is the 48x48 run's, its clock named")
         cost = block(text, "gpu-cost")
-        for setting in ("budget 8 spp, frames 2-59, 1 runs, clock gpu", "budget 8 spp, frames 2-59, 1 runs, clock wall",
-                        "budget 16 spp, frames 2-59, 1 runs, clock gpu", "budget 16 spp, frames 2-59, 1 runs, clock wall",
-                        "target variance 0.0001, frames 30-59, 1 runs, clock gpu"):
+        for setting in ("budget 8 spp, frames 2-33, 1 runs, clock gpu", "budget 8 spp, frames 2-33, 1 runs, clock wall",
+                        "budget 16 spp, frames 2-33, 1 runs, clock gpu", "budget 16 spp, frames 2-33, 1 runs, clock wall",
+                        "target variance 0.0001, frames 30-33, 1 runs, clock gpu"):
             check(f"light-off, 48x48, {setting}" in cost, f"the cost block has the table of {setting}")
         rows = [line for line in block(text, "gpu-targets").splitlines() if line.startswith("| ") and
                 not line.startswith("| target")]

@@ -23,6 +23,8 @@
 
 #include "policy_support.hpp"
 
+namespace budget_allocation_tests {  // one namespace per file: the unity build (the sanitize preset) joins files
+
 namespace {
 
 constexpr std::size_t field = 10000, sub_pixel = 500, no_variance = 100;
@@ -117,3 +119,5 @@ TEST_CASE("the budget's lambda spends B per pixel over a log-uniform sigma field
     const double mean = double(samples) / double(pixels);
     CHECK(std::fabs(mean - p.budget) <= (bound + 5 * std::sqrt(bernoulli)) / double(pixels));
 }
+
+}  // namespace budget_allocation_tests

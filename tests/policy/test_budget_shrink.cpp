@@ -23,6 +23,8 @@
 
 #include "policy_support.hpp"
 
+namespace budget_shrink_tests {  // one namespace per file: the unity build (the sanitize preset) joins files
+
 namespace {
 
 namespace port = emcv::port;
@@ -191,3 +193,5 @@ TEST_CASE("plan_frame under a budget shrinks by the prior it is given and hands 
     CHECK(prior.mean_sigma2 == Catch::Approx(mean).epsilon(0.13));
     CHECK(prior.between_variance > 0.0f);
 }
+
+}  // namespace budget_shrink_tests

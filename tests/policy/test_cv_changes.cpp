@@ -57,6 +57,8 @@
 
 #include "policy_support.hpp"
 
+namespace cv_changes_tests {  // one namespace per file: the unity build (the sanitize preset) joins files
+
 namespace {
 
 constexpr std::size_t width = 32, pixels = width * width;
@@ -277,3 +279,5 @@ TEST_CASE("a batch push whose (1 - r) n d_f overflows keeps the cross comoment f
     CHECK(sigma2 >= 0.0f);
     CHECK(n == p.n_max);
 }
+
+}  // namespace cv_changes_tests

@@ -25,6 +25,8 @@
 
 #include "policy_support.hpp"
 
+namespace notex_changes_tests {  // one namespace per file: the unity build (the sanitize preset) joins files
+
 namespace {
 
 constexpr std::size_t width = 32, pixels = width * width;
@@ -109,3 +111,5 @@ TEST_CASE("cv-notex's update: a step of f and G by the same amount is no change 
         CHECK(st.states[i].count == plain[i].count);
     }
 }
+
+}  // namespace notex_changes_tests

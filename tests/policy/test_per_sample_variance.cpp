@@ -33,6 +33,8 @@
 
 #include "policy_support.hpp"
 
+namespace per_sample_variance_tests {  // one namespace per file: the unity build (the sanitize preset) joins files
+
 namespace {
 
 using emcv_policy_test::gaussian_source;
@@ -178,3 +180,5 @@ TEST_CASE("plain pushes (no N_t scaling) estimate the output's variance, s^2 E[1
         CHECK(plain.estimate < 0.2 * s * s);  // off by E[1/N] = 1/16 or 0.127
     }
 }
+
+}  // namespace per_sample_variance_tests

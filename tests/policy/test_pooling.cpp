@@ -25,6 +25,8 @@
 
 #include "policy_support.hpp"
 
+namespace pooling_tests {  // one namespace per file: the unity build (the sanitize preset) joins files
+
 namespace {
 
 constexpr float no_variance = -1.0f, no_samples = -2.0f;
@@ -194,3 +196,5 @@ TEST_CASE("plan_frame allocates from the pooled variances; pixels that do not sc
     CHECK(mean > 0.9 * p.budget);
     CHECK(mean < 1.1 * p.budget);
 }
+
+}  // namespace pooling_tests

@@ -12,6 +12,8 @@
 
 #include <emcv/adaptive_sampling.hpp>
 
+namespace sampling_api_tests {  // one namespace per file: the unity build (the sanitize preset) joins files
+
 namespace {
 
 std::string message_of(const emcv::sampling_params& p) {
@@ -128,3 +130,5 @@ TEST_CASE("budget_solve: lambda grows with the budget and is the same on every c
         previous = lambda;
     }
 }
+
+}  // namespace sampling_api_tests

@@ -27,6 +27,8 @@
 
 #include "policy_support.hpp"
 
+namespace sampling_behaviour_tests {  // one namespace per file: the unity build (the sanitize preset) joins files
+
 namespace {
 
 constexpr std::size_t side = 64, pixels = side * side;
@@ -102,3 +104,5 @@ TEST_CASE("the history's variance, not a floor, sets N: cv and spvg agree on a s
             if (cv.counts[std::size_t(t)][i] > cv.counts[std::size_t(t - 1)][i]) ++rises;
     CHECK(rises == 0);
 }
+
+}  // namespace sampling_behaviour_tests

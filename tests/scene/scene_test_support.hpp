@@ -24,6 +24,11 @@ private:
     std::filesystem::path path_;
 };
 
+/// A unit right tetrahedron (volume 1/6), counter-clockwise from outside, as OBJ text.
+inline constexpr const char* tetrahedron_obj =
+    "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+    "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+
 /// The repository root (compile definition).
 std::filesystem::path source_dir();
 

@@ -16,6 +16,7 @@
 using namespace emcv::demo;
 using emcv::test::source_dir;
 using emcv::test::temp_folder;
+using emcv::test::tetrahedron_obj;
 
 namespace {
 
@@ -54,11 +55,6 @@ void check_well_formed(const mesh& m) {
         REQUIRE(std::fabs(glm::length(v.normal) - 1.0f) < 1e-5f);
     }
 }
-
-/// A unit right tetrahedron (volume 1/6), counter-clockwise from outside, as OBJ text.
-const char* tetrahedron_obj =
-    "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
-    "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
 
 }  // namespace
 

@@ -12,12 +12,10 @@
 
 using namespace emcv::demo;
 using emcv::test::temp_folder;
+using emcv::test::tetrahedron_obj;
 using nlohmann::json;
 
 namespace {
-
-const char* tetrahedron_obj =
-    "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
 
 /// A valid scene using every section: a procedural mesh, a mesh file beside the scene (relative path), a
 /// diffuse and an SSS material, a transform, each light type and a curve.

@@ -11,6 +11,9 @@ namespace emcv_test {
 
 using real = long double;
 
+/// The accuracy asked of the double estimators against these references: relative error at most 1e-12.
+inline constexpr double kTolerance = 1e-12;
+
 template <std::size_t N>
 struct reference_moments {
     real total_weight = 0;

@@ -11,11 +11,10 @@
 
 #include "../support/reference.hpp"
 
+using emcv_test::kTolerance;
 using emcv_test::real;
 
 namespace {
-
-constexpr double kTolerance = 1e-12;
 
 std::vector<std::array<double, 2>> stream(std::uint64_t seed, std::size_t n) {
     std::mt19937_64 rng(seed);

@@ -10,11 +10,10 @@
 
 #include "../support/reference.hpp"
 
+using emcv_test::kTolerance;
 using emcv_test::real;
 
 namespace {
-
-constexpr double kTolerance = 1e-12;  // the accuracy asked of the double estimators: relative error <= 1e-12
 
 template <std::size_t N>
 std::vector<std::array<double, N>> correlated_stream(std::mt19937_64& rng, std::size_t n, double offset) {
