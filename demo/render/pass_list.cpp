@@ -95,7 +95,7 @@ const std::vector<planned_pass>& frame_planner::plan(int frame, const std::vecto
             case sss_passes::adaptive: {
                 // The method's own burley program, which also updates the history (and under a quality target
                 // first plans N over its tile); a budget records one pass more before it: the samples pass,
-                // whose last workgroup solves the frame's scale from every pixel's variance; unless the last
+                // after which a one-workgroup dispatch solves the frame's scale from every pixel's variance; unless the last
                 // frame's burley pass planned this frame (same view), which this frame's does for the next
                 // frame when that one shows this view again.
                 planned_by_previous_ = plan_ahead_ && planned_frame_ == frame;

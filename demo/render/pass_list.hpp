@@ -34,7 +34,7 @@ enum class pass_id {
     shadow,
     lighting,  ///< also lists the SSS tiles on frames with SSS passes
     sss_adaptive_samples,  ///< budget mode only: each pixel's variance from the reprojected history, and the
-                           ///< scale of N = clamp(lambda sigma) solved by the pass's last workgroup
+                           ///< scale of N = clamp(lambda sigma) solved by a one-workgroup dispatch after it
     sss_burley,            ///< adaptive methods: their own program, which also pushes (f, G) into the history
                            ///< (and under a quality target first plans N itself)
     sss_separable_h,

@@ -27,6 +27,8 @@ const std::vector<tunable>& tunables() {
         {"EMCV_HISTORY_ETA_MOVING", t::real, 0.0, 0.5, true, "moving mean/variance weight (spvg, cv-notex)",
          EMCV_HISTORY_ETA_MOVING},
         {"EMCV_HISTORY_ETA_EMCM", t::real, 0.0, 0.5, true, "EMCM weight (cv)", EMCV_HISTORY_ETA_EMCM},
+        {"EMCV_HISTORY_BLOCK", t::integer, 1, 4, false,
+         "the statistics' grain: one history texel and one N per K x K pixels (1, 2 or 4)", EMCV_HISTORY_BLOCK},
         {"EMCV_HISTORY_MAX_COUNT", t::unsigned_integer, 2, 2048, false, "saturating frame count of a texel",
          double(EMCV_HISTORY_MAX_COUNT)},
         {"EMCV_HISTORY_FOOTPRINT_RADIUS_PER_D", t::real, 0.0, 100.0, true, "kernel radius per shape distance",
@@ -119,6 +121,11 @@ void check_tunables(const define_list& defines) {
     char text[160];
     if (n_min > n_max) {
         std::snprintf(text, sizeof text, "--define: EMCV_HISTORY_N_MIN (%g) exceeds EMCV_HISTORY_N_MAX (%g)", n_min, n_max);
+        throw tunable_error(text);
+    }
+    const double block = tunable_value(defines, "EMCV_HISTORY_BLOCK");
+    if (block != 1.0 && block != 2.0 && block != 4.0) {
+        std::snprintf(text, sizeof text, "--define: EMCV_HISTORY_BLOCK (%g) is not 1, 2 or 4 (a divisor of the 8x8 SSS tile)", block);
         throw tunable_error(text);
     }
     if (budget > n_max) {

@@ -44,8 +44,8 @@ using define_list = std::vector<std::pair<std::string, std::string>>;
 /// name that is not a tunable.
 double tunable_value(const define_list& defines, std::string_view name);
 
-/// Throws tunable_error when values that are each in range contradict each other: N_MIN > N_MAX, or a budget
-/// above N_MAX.
+/// Throws tunable_error when values that are each in range contradict each other: N_MIN > N_MAX, a budget
+/// above N_MAX, or a block size (EMCV_HISTORY_BLOCK) that does not divide the 8x8 tile (3).
 void check_tunables(const define_list& defines);
 
 /// How the adaptive methods turn per-sample variance into counts (include/emcv/port/history.h), decided by

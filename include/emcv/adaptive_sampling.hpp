@@ -21,8 +21,8 @@
 //                           noise fell, their comoments are scaled down by the ratio (the tile's noise test).
 //            Every formula is the port's (include/emcv/port/history.h, budget.h, ema.h, cv.h), the code the
 //            GPU runs: this header only loops over pixels, in the order of shaders/adaptive/samples.comp.glsl
-//            and the burley pass's count and history update. budget_solve finds the lambda that the samples
-//            pass's last workgroup solves (shaders/adaptive/budget_block.h), bit for bit (the bins added in
+//            and the burley pass's count and history update. budget_solve finds the lambda that the GPU's
+//            solve pass solves (shaders/adaptive/budget_block.h), bit for bit (the bins added in
 //            the same order, the same float operations) when compiled without FMA contraction
 //            (-ffp-contract=off, as the port asks).
 //            The per-pixel states are the port's own types, so a history kept in a GPU storage buffer and

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // shaders/adaptive/budget_block.h — the budget's storage block (emcv/port/budget.h's EmcvBudgetBlock) as the
-// adaptive passes see it; for the samples pass (EMCV_BUDGET_GROUP_THREADS defined), the per-workgroup histogram
-// its pixels are added to and the solve that its last workgroup runs on the frame's histogram, which also stores
-// the next frame's shrinkage prior from the histogram of the unshrunk variances (emcv_history_frame_prior).
+// adaptive passes see it: the frame's histogram that the planning passes add their blocks to (emcv_budget_add),
+// and for the solve pass after them (adaptive/budget_solve.comp.glsl, EMCV_BUDGET_GROUP_THREADS defined) the
+// solve on the frame's histogram, which also stores the next frame's shrinkage prior from the histogram of the
+// unshrunk variances (emcv_history_frame_prior).
 #ifndef EMCV_ADAPTIVE_BUDGET_BLOCK_H
 #define EMCV_ADAPTIVE_BUDGET_BLOCK_H
 
@@ -14,8 +15,36 @@ layout(std430, EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_BUDGET)) buffer Budget {
     EmcvBudgetBlock budget;
 };
 
+/// Adds a block's per-sample variance (or its no-variance / no-samples code, history.h) to the frame's histogram,
+/// once for each of its `pixels` scattering pixels (every pixel of a block takes the block's N: the budget counts
+/// pixels, emcv/port/history.h, emcv_history_block_batch): global atomics, integer sums that are the same in any
+/// order, so the histogram is emcv::budget_add's in C++ (a pixel at a time) bit for bit. A block adds its own
+/// (a tile holds 4 of them at K = 4, 16 at K = 2): no workgroup histogram to clear and flush, which on llvmpipe
+/// cost every workgroup a walk over all the bins.
+void emcv_budget_add(float sigma2, uint pixels) {
+    if (sigma2 == emcv_history_no_samples()) {
+        atomicAdd(budget.zero_pixels, pixels);
+    } else if (!(sigma2 >= 0.0f)) {
+        atomicAdd(budget.default_pixels, pixels);
+    } else {
+        float sigma = sqrt(sigma2);
+        uint bin = emcv_budget_bin(sigma);
+        atomicAdd(budget.bin_count[bin], pixels);
+        atomicAdd(budget.bin_fraction[bin], pixels * emcv_budget_fraction(sigma));
+    }
+}
+
+/// Adds a block's pooled variance before shrinkage and its pooled effective frames, once for each of its `pixels`,
+/// to the statistics the next frame shrinks towards (a code, or no frames, adds nothing; emcv::budget_add_raw in
+/// C++, a pixel at a time).
+void emcv_budget_add_raw(float sigma2, float frames, uint pixels) {
+    if (!(sigma2 >= 0.0f) || !(frames > 0.0f)) return;
+    atomicAdd(budget.raw_count[emcv_budget_bin(sqrt(sigma2))], pixels);
+    atomicAdd(budget.raw_inverse_frames, pixels * emcv_history_inverse_frames_units(frames));
+}
+
 #if defined(EMCV_BUDGET_GROUP_THREADS)
-// The solve, run by the samples pass's last workgroup (EMCV_BUDGET_GROUP_THREADS threads, a power of two that
+// The solve, run by the solve pass's one workgroup (EMCV_BUDGET_GROUP_THREADS threads, a power of two that
 // divides EMCV_BUDGET_BINS): the smallest bit pattern of lambda in the open interval between
 // emcv_budget_lambda_low_bits and _high_bits whose planned samples sum_i clamp(lambda sigma_i, N_MIN, N_MAX),
 // added over the bins in bin order, reach B (histogram pixels + sub-pixel pixels), the high bound when none
@@ -23,57 +52,15 @@ layout(std430, EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_BUDGET)) buffer Budget {
 // instead of bisecting (one barrier-bound reduction per halving) every thread evaluates one of `threads`
 // candidates over all the bins each round, which narrows the interval 65-fold: five rounds and a last one.
 #define EMCV_BUDGET_BINS_PER_THREAD (EMCV_BUDGET_BINS / EMCV_BUDGET_GROUP_THREADS)
-shared bool emcv_budget_last_group;
-// The workgroup's own histogram: its pixels meet in shared memory, and only its non-empty bins reach the
-// frame's histogram (a tile's 64 pixels fall in a few bins: a few global atomics instead of two per pixel).
-// The last workgroup reuses it for the frame's bins (counts, and sums of sigma as float bits).
+// The frame's bins as the solve reads them (counts, and sums of sigma as float bits).
 shared uint emcv_budget_group_count[EMCV_BUDGET_BINS];
 shared uint emcv_budget_group_fraction[EMCV_BUDGET_BINS];
 shared uint emcv_budget_group_zero;
-shared uint emcv_budget_group_raw[EMCV_BUDGET_BINS];  // the pooled sigma^2 before shrinkage (frame statistics)
-shared uint emcv_budget_group_inverse_frames;
 shared vec3 emcv_budget_moments[EMCV_BUDGET_GROUP_THREADS];  // per thread, for the next frame's prior
 shared vec2 emcv_budget_prior;                                   // (mean, tau^2), stored with lambda
 shared uint emcv_budget_group_default;
 shared uint emcv_budget_below;  // candidates of the round whose total falls short of the plan
 shared uint emcv_budget_nonempty;  // the frame's non-empty bins, packed in bin order at the front of the arrays
-
-/// Empties the workgroup's histogram; the caller's next barrier() precedes the first emcv_budget_add.
-void emcv_budget_group_clear(uint thread) {
-    for (uint k = 0u; k < uint(EMCV_BUDGET_BINS_PER_THREAD); ++k) {
-        emcv_budget_group_count[thread + k * uint(EMCV_BUDGET_GROUP_THREADS)] = 0u;
-        emcv_budget_group_fraction[thread + k * uint(EMCV_BUDGET_GROUP_THREADS)] = 0u;
-        emcv_budget_group_raw[thread + k * uint(EMCV_BUDGET_GROUP_THREADS)] = 0u;
-    }
-    if (thread == 0u) {
-        emcv_budget_group_inverse_frames = 0u;
-        emcv_budget_group_zero = 0u;
-        emcv_budget_group_default = 0u;
-    }
-}
-
-/// Adds one SSS pixel's per-sample variance (or its no-variance / no-samples code, history.h) to the
-/// workgroup's histogram (emcv::budget_add in C++ adds to the frame's at once: the sums are the same integers).
-void emcv_budget_add(float sigma2) {
-    if (sigma2 == emcv_history_no_samples()) {
-        atomicAdd(emcv_budget_group_zero, 1u);
-    } else if (!(sigma2 >= 0.0f)) {
-        atomicAdd(emcv_budget_group_default, 1u);
-    } else {
-        float sigma = sqrt(sigma2);
-        uint bin = emcv_budget_bin(sigma);
-        atomicAdd(emcv_budget_group_count[bin], 1u);
-        atomicAdd(emcv_budget_group_fraction[bin], emcv_budget_fraction(sigma));
-    }
-}
-
-/// Adds a pixel's pooled variance before shrinkage and its pooled effective frames to the statistics the
-/// next frame shrinks towards (a code, or no frames, adds nothing; emcv::budget_add_raw in C++).
-void emcv_budget_add_raw(float sigma2, float frames) {
-    if (!(sigma2 >= 0.0f) || !(frames > 0.0f)) return;
-    atomicAdd(emcv_budget_group_raw[emcv_budget_bin(sqrt(sigma2))], 1u);
-    atomicAdd(emcv_budget_group_inverse_frames, emcv_history_inverse_frames_units(frames));
-}
 
 /// The frame's planned samples at scale lambda: the non-empty bins added in bin order (the empty ones would add
 /// exactly 0).
@@ -85,31 +72,11 @@ float emcv_budget_total(float lambda, float n_min, float n_max) {
     return total;
 }
 
-/// Called by every thread of every workgroup of the samples pass once its pixels are in the workgroup's
-/// histogram (uniform control flow: it has barriers). The workgroup adds its non-empty bins to the frame's;
-/// the last workgroup to arrive reads the frame's histogram and clears it (atomic exchanges: the other
-/// workgroups' atomics are visible to atomics), solves lambda for the burley pass and resets the block.
-void emcv_budget_finish_group(uint thread, uint groups) {
-    barrier();  // every pixel of the workgroup is in its histogram
-    for (uint k = 0u; k < uint(EMCV_BUDGET_BINS_PER_THREAD); ++k) {
-        uint bin = thread + k * uint(EMCV_BUDGET_GROUP_THREADS);
-        if (emcv_budget_group_count[bin] > 0u) {
-            atomicAdd(budget.bin_count[bin], emcv_budget_group_count[bin]);
-            atomicAdd(budget.bin_fraction[bin], emcv_budget_group_fraction[bin]);
-        }
-        if (emcv_budget_group_raw[bin] > 0u) atomicAdd(budget.raw_count[bin], emcv_budget_group_raw[bin]);
-    }
-    if (thread == 0u) {
-        if (emcv_budget_group_inverse_frames > 0u) atomicAdd(budget.raw_inverse_frames, emcv_budget_group_inverse_frames);
-        if (emcv_budget_group_zero > 0u) atomicAdd(budget.zero_pixels, emcv_budget_group_zero);
-        if (emcv_budget_group_default > 0u) atomicAdd(budget.default_pixels, emcv_budget_group_default);
-    }
-    memoryBarrierBuffer();  // this thread's histogram atomics are done before its workgroup counts as finished
-    barrier();
-    if (thread == 0u) emcv_budget_last_group = atomicAdd(budget.finished_groups, 1u) == groups - 1u;
-    barrier();
-    if (!emcv_budget_last_group) return;  // the same for the whole workgroup
-
+/// The solve, one workgroup of EMCV_BUDGET_GROUP_THREADS threads dispatched after the pass whose blocks added to
+/// the frame's histogram (adaptive/budget_solve.comp.glsl; the renderer's memory barrier orders it after their
+/// atomics): reads the frame's histogram and clears it, solves lambda for the burley pass that spends it,
+/// stores the next frame's prior and resets the block's counters. Every thread calls it (it has barriers).
+void emcv_budget_solve(uint thread) {
     // The frame's bins into shared memory: count, and the bin's sum of sigma (as bits, in the fraction array);
     // then the non-empty ones packed in bin order at the front (a frame fills a few tens of the 256).
     for (uint k = 0u; k < uint(EMCV_BUDGET_BINS_PER_THREAD); ++k) {
@@ -175,7 +142,7 @@ void emcv_budget_finish_group(uint thread, uint groups) {
         budget.mean_sigma2 = emcv_budget_prior.x;
         budget.between_variance = emcv_budget_prior.y;
         atomicExchange(budget.default_pixels, 0u);
-        atomicExchange(budget.finished_groups, 0u);
+        budget.solves += 1u;
     }
 }
 #endif  // defined(EMCV_BUDGET_GROUP_THREADS)

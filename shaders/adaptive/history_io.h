@@ -27,6 +27,89 @@ layout(rgba16f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_A)) coherent
 
 layout(r32ui, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_SAMPLES)) uniform uimage2D samples_image;
 
+// The statistics' grain (emcv/port/history.h, EMCV_HISTORY_BLOCK): the history, the samples image and every
+// count are one texel per K x K block of pixels; an 8x8 tile holds EMCV_ADAPTIVE_TILE_BLOCKS of them.
+#if EMCV_HISTORY_BLOCK != 1 && EMCV_HISTORY_BLOCK != 2 && EMCV_HISTORY_BLOCK != 4
+#error "EMCV_HISTORY_BLOCK is 1, 2 or 4 (a divisor of the 8x8 SSS tile)"
+#endif
+#define EMCV_ADAPTIVE_TILE_BLOCKS_SIDE (EMCV_RENDER_TILE_SIZE / EMCV_HISTORY_BLOCK)
+#define EMCV_ADAPTIVE_TILE_BLOCKS (EMCV_ADAPTIVE_TILE_BLOCKS_SIDE * EMCV_ADAPTIVE_TILE_BLOCKS_SIDE)
+/// Whether this invocation holds one of the tile's blocks: invocation j holds block j (the first TILE_BLOCKS
+/// invocations, which lie in the first SIMD batches: an implementation that runs a workgroup in batches, as
+/// llvmpipe does, skips a batch in which no lane takes the `if`, where a loop would run its body once masked).
+bool emcv_adaptive_holds_block() { return gl_LocalInvocationIndex < uint(EMCV_ADAPTIVE_TILE_BLOCKS); }
+
+/// One block of a tile as its pixels left it in shared memory (emcv_adaptive_block).
+struct EmcvAdaptiveBlock {
+    ivec2 texel;     ///< its texel of the history and samples images (block grid); (-1, -1) past the tile count
+    ivec2 pixel;     ///< its representative: the first scattering pixel in row order (reprojection, surface)
+    uint code;       ///< the representative's material code; 0 when none of its pixels scatters
+    uint pixels;     ///< its scattering pixels (m)
+    bool sub_pixel;  ///< every scattering pixel's kernel is under a pixel: the block takes no samples
+};
+
+/// The tile's pixels, at their local index: material code (0: off screen or not scattering) and sub-pixel test
+/// (emcv_adaptive_share_pixel), and after sampling their tracked f, G and samples (emcv_adaptive_update_tile).
+shared uint tile_pixel_code[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];
+shared uint tile_pixel_sub[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];
+
+/// Shares one pixel's code and sub-pixel test at its local index; the caller's barrier() makes them readable.
+void emcv_adaptive_share_pixel(uint local, uint code, bool sub_pixel) {
+    tile_pixel_code[local] = code;
+    tile_pixel_sub[local] = sub_pixel ? 1u : 0u;
+}
+
+/// The workgroup's tile origin (its pixel (0, 0)) from pixel p of this invocation before any reordering, or
+/// (-1, -1) for a workgroup past the tile count.
+ivec2 emcv_adaptive_tile_origin(ivec2 p) { return p.x >= 0 ? p - ivec2(gl_LocalInvocationID.xy) : ivec2(-1); }
+
+/// Block j's position within its tile, in blocks.
+ivec2 emcv_adaptive_block_local(uint j) {
+    return ivec2(int(j % uint(EMCV_ADAPTIVE_TILE_BLOCKS_SIDE)), int(j / uint(EMCV_ADAPTIVE_TILE_BLOCKS_SIDE)));
+}
+
+/// The block grid's size: the viewport divided by K, rounded up.
+ivec2 emcv_adaptive_grid() {
+    return (ivec2(frame.viewport.xy) + (EMCV_HISTORY_BLOCK - 1)) / EMCV_HISTORY_BLOCK;
+}
+
+/// Whether t is a texel of the block grid.
+bool emcv_adaptive_on_grid(ivec2 t) { return all(greaterThanEqual(t, ivec2(0))) && all(lessThan(t, emcv_adaptive_grid())); }
+
+/// Whether t is a texel of the block grid (emcv_adaptive_on_grid; at K = 1, emcv_render_on_screen).
+bool emcv_adaptive_on_screen(ivec2 t) { return emcv_adaptive_on_grid(t); }
+
+/// No block (an invocation that holds none).
+EmcvAdaptiveBlock emcv_adaptive_no_block() { return EmcvAdaptiveBlock(ivec2(-1), ivec2(-1), 0u, 0u, false); }
+
+/// Block j of the tile at `origin` (emcv_adaptive_tile_origin) from the pixels shared in the tile's arrays: its
+/// texel, representative, code, scattering pixels and whether all of them are sub-pixel. At K = 1 the block is
+/// the pixel.
+EmcvAdaptiveBlock emcv_adaptive_block(uint j, ivec2 origin) {
+    ivec2 l = emcv_adaptive_block_local(j);
+    EmcvAdaptiveBlock b = emcv_adaptive_no_block();
+    if (origin.x < 0) return b;
+    b.texel = origin / EMCV_HISTORY_BLOCK + l;
+    b.pixel = origin + l * EMCV_HISTORY_BLOCK;
+    b.sub_pixel = true;
+    for (int dy = 0; dy < EMCV_HISTORY_BLOCK; ++dy) {
+        for (int dx = 0; dx < EMCV_HISTORY_BLOCK; ++dx) {
+            ivec2 q = l * EMCV_HISTORY_BLOCK + ivec2(dx, dy);
+            uint i = uint(q.x + q.y * EMCV_RENDER_TILE_SIZE);
+            uint code = tile_pixel_code[i];
+            if (code == 0u) continue;
+            if (b.pixels == 0u) {
+                b.code = code;
+                b.pixel = origin + q;
+            }
+            b.pixels += 1u;
+            b.sub_pixel = b.sub_pixel && tile_pixel_sub[i] != 0u;
+        }
+    }
+    if (b.pixels == 0u) b.sub_pixel = false;
+    return b;
+}
+
 /// A fresh (reset) state.
 EmcvAdaptiveState emcv_adaptive_init() {
 #if defined(EMCV_ADAPTIVE_CV)
@@ -140,10 +223,10 @@ EmcvAdaptiveState emcv_adaptive_load(ivec2 p) {
     return s;
 }
 
-/// The history update of SSS pixel p once its samples are taken (the burley pass runs it after its sampling
-/// loop; emcv_adaptive_update_tile): pushes this frame's values into the pixel's state s (emcv_adaptive_load) as
-/// the mean of the n samples the pixel took (include/emcv/port/ema.h, *_push_batch: the history estimates the
-/// per-sample variance, supp. Eq. 25-27) and stores it. f and g are the tracked scattered diffuse as stored for
+/// The history update of a block once its samples are taken (the burley pass runs it after its sampling loop;
+/// emcv_adaptive_update_tile): pushes this frame's values into the block's state s (emcv_adaptive_load) as the mean
+/// of `batch` samples (include/emcv/port/ema.h, *_push_batch: the history estimates the per-sample variance, supp.
+/// Eq. 25-27; a block's batch is emcv_history_block_batch) and stores it at the block's texel. f and g are the tracked scattered diffuse as stored for
 /// display and the tracked unscattered diffuse (in-frame constant control): gamma-space luminance
 /// (emcv_adaptive_tracked).
 ///   spvg      moving mean/variance of f (eta 0.2)
@@ -152,62 +235,103 @@ EmcvAdaptiveState emcv_adaptive_load(ivec2 p) {
 ///             emcv_history_rescale_cv)
 ///   cv-notex  moving mean/variance of r = f - G (alpha = 1, eta 0.2), a change G does not explain clipped as
 ///             cv's (emcv_history_push_notex)
-/// A pixel that took no samples learns nothing about its noise and is not pushed. A non-finite f or G is
+/// A block that took no samples learns nothing about its noise and is not pushed. A non-finite f or G is
 /// refused by the port (state unchanged); a poisoned stored state is reset, never used.
-void emcv_adaptive_update(ivec2 p, EmcvAdaptiveState s, float f, float g, uint n, float noise_ratio) {
-    if (n == 0u) return;
+void emcv_adaptive_update(ivec2 texel, EmcvAdaptiveState s, float f, float g, float batch, float noise_ratio) {
+    if (batch == 0.0f) return;
 #if defined(EMCV_ADAPTIVE_CV)
-    emcv_history_push_cv(s, f, g, EMCV_HISTORY_ETA_EMCM, float(n));
+    emcv_history_push_cv(s, f, g, EMCV_HISTORY_ETA_EMCM, batch);
     emcv_history_rescale_cv(s, noise_ratio);
 #elif defined(EMCV_ADAPTIVE_NOTEX)
-    emcv_history_push_notex(s, f, g, EMCV_HISTORY_ETA_MOVING, float(n));
+    emcv_history_push_notex(s, f, g, EMCV_HISTORY_ETA_MOVING, batch);
 #else
-    emcv_moving_stats_push_batch(s, f, EMCV_HISTORY_ETA_MOVING, float(n));
+    emcv_moving_stats_push_batch(s, f, EMCV_HISTORY_ETA_MOVING, batch);
 #endif
-    emcv_adaptive_store(p, s);
+    emcv_adaptive_store(texel, s);
 }
 
 #if defined(EMCV_ADAPTIVE_TILE_UPDATE)
 #if defined(EMCV_ADAPTIVE_CV)
-// The tile's noise-test pool (emcv_history_noise_add's: sums of term units, of relative-variance units, pixels),
+// The tile's noise-test pool (emcv_history_noise_add's: sums of term units, of relative-variance units, blocks),
 // added to with atomics: fixed-point sums are exact in any order.
 shared uint tile_noise_pool[3];
 #endif
+// The tile's pixels after sampling, at their local index: tracked f and G and the samples taken (0: none).
+shared float tile_pixel_f[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];
+shared float tile_pixel_g[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];
+shared uint tile_pixel_n[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];
 
-/// The history update of the workgroup's 8x8 tile, pixel p of material `code` having taken n samples (0 off
-/// screen and for pixels that do not scatter), its scattered and unscattered diffuse as the burley pass stored
-/// them and its albedo: every invocation calls it, in uniform control flow (cv's noise test holds barriers). The state, f and
-/// g are read once. cv: each pixel's noise-test term before its push (emcv_history_noise_term) and its relative
-/// variance (emcv_history_noise_relative), in fixed-point units (emcv_history_noise_units), summed over the tile's
-/// pixels that took samples, then the push and the rescale by the pool's ratio (emcv_history_noise_ratio,
+/// The history update of the workgroup's 8x8 tile (at `origin`, emcv_adaptive_tile_origin), this invocation's
+/// pixel at local index `local` having taken n samples (0 off screen and for pixels that do not scatter), its
+/// scattered and unscattered diffuse as the burley pass stored them and its albedo: every invocation calls it, in
+/// uniform control flow (it holds barriers). Each pixel's tracked f and g go to the tile; each block
+/// (emcv_adaptive_holds_block) takes the means of its pixels that took samples, in row order, as a batch of
+/// n m samples (emcv_history_block_batch; at K = 1 the pixel's own f, g and n), and reads its state once. cv: each
+/// block's noise-test term before its push (emcv_history_noise_term) and its relative variance
+/// (emcv_history_noise_relative), in fixed-point units (emcv_history_noise_units), summed over the tile's blocks
+/// that took samples, then the push and the rescale by the pool's ratio (emcv_history_noise_ratio,
 /// emcv_adaptive_update); the other methods push as they are.
-void emcv_adaptive_update_tile(ivec2 p, vec3 scattered, vec3 unscattered, vec3 albedo, uint n) {
-    EmcvAdaptiveState s = emcv_adaptive_init();
-    float f = 0.0f;
-    float g = 0.0f;
+void emcv_adaptive_update_tile(uint local, ivec2 origin, vec3 scattered, vec3 unscattered, vec3 albedo, uint n) {
+    tile_pixel_n[local] = n;
     if (n > 0u) {
-        s = emcv_adaptive_load(p);
-        f = emcv_adaptive_tracked(albedo, scattered);
-        g = emcv_adaptive_tracked(albedo, unscattered);
+        tile_pixel_f[local] = emcv_adaptive_tracked(albedo, scattered);
+        tile_pixel_g[local] = emcv_adaptive_tracked(albedo, unscattered);
     }
 #if defined(EMCV_ADAPTIVE_CV)
     if (gl_LocalInvocationIndex < 3u) tile_noise_pool[gl_LocalInvocationIndex] = 0u;
+#endif
     memoryBarrierShared();
     barrier();
-    float term = n > 0u ? emcv_history_noise_term(s, f, g, EMCV_HISTORY_ETA_EMCM, float(n)) : emcv_history_no_variance();
-    uvec3 own = uvec3(0u);
-    emcv_history_noise_add(own, term, emcv_history_noise_relative(float(max(n, 1u))));
-    if (own.z != 0u) {
-        atomicAdd(tile_noise_pool[0], own.x);
-        atomicAdd(tile_noise_pool[1], own.y);
-        atomicAdd(tile_noise_pool[2], own.z);
+    EmcvAdaptiveState s = emcv_adaptive_init();
+    ivec2 texel = ivec2(-1);
+    float f = 0.0f;
+    float g = 0.0f;
+    float batch = 0.0f;
+    if (emcv_adaptive_holds_block()) {
+        uint j = gl_LocalInvocationIndex;
+        ivec2 l = emcv_adaptive_block_local(j);
+        texel = origin / EMCV_HISTORY_BLOCK + l;
+        EMCV_PRECISE float sum_f = 0.0f;
+        EMCV_PRECISE float sum_g = 0.0f;
+        uint pixels = 0u;
+        uint taken = 0u;
+        for (int dy = 0; dy < EMCV_HISTORY_BLOCK; ++dy) {
+            for (int dx = 0; dx < EMCV_HISTORY_BLOCK; ++dx) {
+                ivec2 q = l * EMCV_HISTORY_BLOCK + ivec2(dx, dy);
+                uint i = uint(q.x + q.y * EMCV_RENDER_TILE_SIZE);
+                if (tile_pixel_n[i] == 0u) continue;
+                sum_f += tile_pixel_f[i];
+                sum_g += tile_pixel_g[i];
+                taken = tile_pixel_n[i];  // the block's N: every pixel of a block takes the same
+                pixels += 1u;
+            }
+        }
+        if (pixels > 0u && origin.x >= 0) {
+            EMCV_PRECISE float mean_f = sum_f / float(pixels);
+            EMCV_PRECISE float mean_g = sum_g / float(pixels);
+            f = mean_f;
+            g = mean_g;
+            batch = emcv_history_block_batch(taken, pixels);
+            s = emcv_adaptive_load(texel);
+        }
+#if defined(EMCV_ADAPTIVE_CV)
+        float term = batch > 0.0f ? emcv_history_noise_term(s, f, g, EMCV_HISTORY_ETA_EMCM, batch) : emcv_history_no_variance();
+        uvec3 own = uvec3(0u);
+        emcv_history_noise_add(own, term, emcv_history_noise_relative(max(batch, 1.0f)));
+        if (own.z != 0u) {
+            atomicAdd(tile_noise_pool[0], own.x);
+            atomicAdd(tile_noise_pool[1], own.y);
+            atomicAdd(tile_noise_pool[2], own.z);
+        }
+#endif
     }
+#if defined(EMCV_ADAPTIVE_CV)
     memoryBarrierShared();
     barrier();
     uvec3 pool = uvec3(tile_noise_pool[0], tile_noise_pool[1], tile_noise_pool[2]);
-    emcv_adaptive_update(p, s, f, g, n, emcv_history_noise_ratio(pool));
+    if (emcv_adaptive_holds_block()) emcv_adaptive_update(texel, s, f, g, batch, emcv_history_noise_ratio(pool));
 #else
-    emcv_adaptive_update(p, s, f, g, n, 1.0f);
+    if (emcv_adaptive_holds_block()) emcv_adaptive_update(texel, s, f, g, batch, 1.0f);
 #endif
 }
 #endif

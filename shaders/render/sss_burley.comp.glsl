@@ -7,7 +7,8 @@
 // into the pixel's history (emcv_adaptive_update_tile): sampling and history update are one dispatch. Under a
 // quality target N needs only the pixel's tile, and the pass plans it itself first (the history reprojected and
 // pooled as in adaptive/samples.h): counting, sampling and update in one dispatch, as many passes as burley-N. In
-// budget mode N comes from the adaptive-samples pass before it, whose last workgroup solved the frame's lambda.
+// budget mode N comes from the adaptive-samples pass before it and the frame's lambda, which the solve pass after
+// that one solved (adaptive/budget_solve.comp.glsl).
 // Once every pixel's N is known the tile hands its pixels to its threads in order of N (sort_tile_by_count), so
 // that a warp (or a CPU's SIMD batch) loops over pixels of like N instead of waiting on its largest. For cv the
 // tile's noise test runs between sampling and update (adaptive/history_io.h). Where the temporal resolve reads it
@@ -23,11 +24,8 @@
 #if defined(EMCV_ADAPTIVE_SPVG) || defined(EMCV_ADAPTIVE_CV) || defined(EMCV_ADAPTIVE_NOTEX)
 #define EMCV_BURLEY_ADAPTIVE 1
 #define EMCV_ADAPTIVE_TILE_UPDATE 1  // emcv_adaptive_update_tile and its shared memory
-#if defined(EMCV_ADAPTIVE_PLAN_NEXT)
-// Budget mode, the next frame showing this frame's view: after its update the pass plans the next frame's N as
-// that frame's samples pass would (plan_next_frame), whose workgroup histograms and last-workgroup solve it takes.
-#define EMCV_BUDGET_GROUP_THREADS (EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE)
-#endif
+// Budget mode, the next frame showing this frame's view (EMCV_ADAPTIVE_PLAN_NEXT): after its update the pass
+// plans the next frame's N as that frame's samples pass would (plan_next_frame); the solve pass follows.
 #include "adaptive/samples.h"
 #endif
 
@@ -55,6 +53,7 @@ bool pending_sub_pixel = false;
 
 #if defined(EMCV_BURLEY_ADAPTIVE)
 uint planned_count = 0u;  // quality target: this invocation's N, planned at the top of main (plan_quality_count)
+ivec2 tile_origin = ivec2(-1);  // the tile's pixel (0, 0) (emcv_adaptive_tile_origin), set at the top of main
 uint assigned_count = 0u;  // the N of the pixel this invocation samples (sort_tile_by_count)
 uint assigned_local = 0u;  // that pixel's local index in the tile (sort_tile_by_count)
 // The tile's counting sort by N, over as many keys as the tile has pixels: per key its pixels' count, then its
@@ -64,25 +63,38 @@ shared uint sort_offset[SORT_KEYS];
 shared uint sort_pixel[SORT_KEYS];
 shared uint sort_count[SORT_KEYS];
 
-/// Quality target: reprojects pixel p's history into this frame's, pools its per-sample variance over its tile
-/// (adaptive/samples.h) and plans N = the count that brings it to the target (emcv_history_count_target). Every
-/// invocation calls it, in uniform control flow (the tile's variances meet behind a barrier).
+// Quality target: each block's N, planned by the invocation that holds the block (plan_quality_count).
+shared uint tile_planned[EMCV_ADAPTIVE_TILE_BLOCKS];
+
+/// Quality target: reprojects the tile's block histories into this frame's, pools their per-sample variances over
+/// the tile (adaptive/samples.h) and plans each block's N = the count that brings it to the target
+/// (emcv_history_count_target), which pixel p takes. Every invocation calls it, in uniform control flow (the
+/// tile's variances meet behind barriers).
 void plan_quality_count(ivec2 p) {
-    uint code;
-    float frames;
-    float own = emcv_adaptive_tile_sigma2(p, code, frames);
-    if (code == 0u) return;
-    float pooled_frames;
-    planned_count = uint(emcv_history_count_target(emcv_adaptive_pooled_sigma2(ivec2(gl_LocalInvocationID.xy), own, code, pooled_frames)));
+    emcv_adaptive_share_pixel_of(p);
+    EmcvAdaptiveBlock blk;
+    float own, frames;
+    emcv_adaptive_tile_sigma2(tile_origin, blk, own, frames);
+    if (emcv_adaptive_holds_block()) {
+        uint j = gl_LocalInvocationIndex;
+        float pooled_frames;
+        tile_planned[j] = blk.code == 0u ? 0u
+                        : uint(emcv_history_count_target(emcv_adaptive_pooled_sigma2(j, own, blk.code, pooled_frames)));
+    }
+    barrier();
+    ivec2 l = ivec2(gl_LocalInvocationID.xy) / EMCV_HISTORY_BLOCK;
+    planned_count = tile_planned[l.x + l.y * EMCV_ADAPTIVE_TILE_BLOCKS_SIDE];
 }
 
-/// The pixel's N: under a quality target the one this pass planned; in budget mode the adaptive-samples pass
-/// leaves the per-sample variance and N = clamp(lambda sigma) is taken here, with the lambda its last workgroup
-/// solved from the same frame's variances.
+/// The pixel's N, its block's: under a quality target the one this pass planned; in budget mode the
+/// adaptive-samples pass leaves the block's per-sample variance and N = clamp(lambda sigma) is taken here, with the
+/// lambda the solve pass after it solved from the same frame's variances, rounded with the block's number (every
+/// pixel of a block takes the same N).
 uint adaptive_count(ivec2 p) {
     if (!emcv_history_budget_mode()) return planned_count;
-    float u = emcv_budget_u(uint(p.x), uint(p.y), frame.counters.x, frame.counters.y);
-    return uint(emcv_history_count_spend(uintBitsToFloat(imageLoad(samples_image, p).x), budget.lambda, u));
+    ivec2 texel = p / EMCV_HISTORY_BLOCK;
+    float u = emcv_budget_u(uint(texel.x), uint(texel.y), frame.counters.x, frame.counters.y);
+    return uint(emcv_history_count_spend(uintBitsToFloat(imageLoad(samples_image, texel).x), budget.lambda, u));
 }
 
 /// Hands the tile's pixels to its threads in order of N: this invocation's pixel p (its own on entry, 0 samples
@@ -130,18 +142,29 @@ void sort_tile_by_count(inout ivec2 p) {
 /// Budget mode, when the next frame shows this frame's view (the renderer builds the pass with
 /// EMCV_ADAPTIVE_PLAN_NEXT then: frame_planner): the next frame's samples pass would reproject every history to its
 /// own texel, keep it as this pass stored it, and pool, shrink and histogram the variances over the same tiles.
-/// So this pass does that now, from the history it has just stored (emcv_adaptive_stored_sigma2), and its last
-/// workgroup solves the next frame's lambda (emcv_budget_finish_group: every other workgroup has read this frame's
-/// lambda before it reports). The next frame records no samples pass, and its burley pass reads the samples image
-/// and the budget block as that pass would have left them, bit for bit. p: the pixel this invocation sampled
-/// (sort_tile_by_count), at local index assigned_local. Every invocation calls it, in uniform control flow.
-void plan_next_frame(ivec2 p) {
-    float frames;
-    float own = emcv_adaptive_stored_sigma2(p, pending_code, pending_sub_pixel, frames);
-    emcv_adaptive_share_sigma2(assigned_local, own, pending_code, frames);
-    ivec2 l = ivec2(int(assigned_local % uint(EMCV_RENDER_TILE_SIZE)), int(assigned_local / uint(EMCV_RENDER_TILE_SIZE)));
-    if (pending_code != 0u) emcv_adaptive_allocate(p, l, own, pending_code);
-    emcv_budget_finish_group(gl_LocalInvocationIndex, gl_NumWorkGroups.x * gl_NumWorkGroups.y);
+/// So this pass does that now, from the history it has just stored (emcv_adaptive_stored_sigma2), and the solve
+/// pass after it solves the next frame's lambda (adaptive/budget_solve.comp.glsl: after the whole dispatch, so
+/// every workgroup has read this frame's lambda). The next frame records no samples pass, and its burley pass reads
+/// the samples image and the budget block as that pass and its solve would have left them, bit for bit. Each
+/// invocation shares the pixel it sampled (sort_tile_by_count, local index assigned_local); the blocks' invocations
+/// plan. Every invocation calls it, in uniform control flow.
+void plan_next_frame() {
+    emcv_adaptive_share_pixel(assigned_local, pending_code, pending_sub_pixel);
+    barrier();
+    EmcvAdaptiveBlock blk = emcv_adaptive_no_block();
+    float own = emcv_history_no_samples();
+    if (emcv_adaptive_holds_block()) {
+        uint j = gl_LocalInvocationIndex;
+        float frames;
+        blk = emcv_adaptive_block(j, tile_origin);
+        own = emcv_adaptive_stored_sigma2(blk, frames);
+        emcv_adaptive_share_sigma2(j, own, blk.code, frames);
+    }
+    barrier();
+    if (emcv_adaptive_holds_block()) {
+        uint j = gl_LocalInvocationIndex;
+        if (blk.code != 0u) emcv_adaptive_allocate(j, blk, own);
+    }
 }
 #endif
 
@@ -202,18 +225,16 @@ void main() {
         tile_sample_sum = 0u;
         tile_sample_max = 0u;
     }
-#if defined(EMCV_ADAPTIVE_PLAN_NEXT)
-    emcv_budget_group_clear(gl_LocalInvocationIndex);  // ordered before any add by the barriers below
-#endif
     barrier();
     ivec2 p = emcv_render_tile_pixel();
 #if defined(EMCV_BURLEY_ADAPTIVE)
+    tile_origin = emcv_adaptive_tile_origin(p);
     if (!emcv_history_budget_mode()) plan_quality_count(p);
     sort_tile_by_count(p);
 #endif
     uint n = scatter(p);
 #if defined(EMCV_BURLEY_ADAPTIVE)
-    emcv_adaptive_update_tile(p, pending_scattered, pending_unscattered, pending_albedo, n);
+    emcv_adaptive_update_tile(assigned_local, tile_origin, pending_scattered, pending_unscattered, pending_albedo, n);
 #endif
     // Sample statistics reduced per tile in shared memory, then one global atomic per tile (not per pixel).
     atomicAdd(tile_sample_sum, n);
@@ -224,6 +245,6 @@ void main() {
         atomicMax(stats.sample_max, tile_sample_max);
     }
 #if defined(EMCV_ADAPTIVE_PLAN_NEXT)
-    plan_next_frame(p);
+    plan_next_frame();
 #endif
 }

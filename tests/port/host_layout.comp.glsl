@@ -17,5 +17,5 @@ layout(std430, EMCV_LAYOUT_BINDING(2)) buffer BudgetBuffer { EmcvBudgetBlock bud
 void main() {
     emcm2[0].count = 1u;
     moving_stats[0].count = 1u;
-    budget.finished_groups = 1u;
+    budget.solves = 1u;
 }

@@ -120,7 +120,7 @@ void check_all(const nlohmann::json& r) {
                   {EMCV_HOST_MEMBER(host::EmcvBudgetBlock, lambda), EMCV_HOST_MEMBER(host::EmcvBudgetBlock, planned),
                    EMCV_HOST_MEMBER(host::EmcvBudgetBlock, default_pixels),
                    EMCV_HOST_MEMBER(host::EmcvBudgetBlock, zero_pixels),
-                   EMCV_HOST_MEMBER(host::EmcvBudgetBlock, finished_groups),
+                   EMCV_HOST_MEMBER(host::EmcvBudgetBlock, solves),
                    EMCV_HOST_MEMBER(host::EmcvBudgetBlock, bin_count),
                    EMCV_HOST_MEMBER(host::EmcvBudgetBlock, bin_fraction),
                    EMCV_HOST_MEMBER(host::EmcvBudgetBlock, raw_count),

@@ -56,13 +56,22 @@ history_layout checked_layout(const method& m) {
 
 history::history(const method& m, int width, int height, const gl::preprocess_options& shaders,
                  const std::filesystem::path& shader_dir)
-    : layout_(checked_layout(m)), budget_mode_(sampling_mode_of(shaders.defines).budget), width_(width), height_(height) {
+    : layout_(checked_layout(m)), budget_mode_(sampling_mode_of(shaders.defines).budget),
+      block_(static_cast<int>(tunable_value(shaders.defines, "EMCV_HISTORY_BLOCK"))) {
     if (width < 1 || height < 1) throw std::runtime_error("adaptive history: empty size");
+    // One texel per K x K block (EMCV_HISTORY_BLOCK), the grid rounded up (adaptive/history_io.h, emcv_adaptive_grid).
+    pixel_width_ = width;
+    pixel_height_ = height;
+    width_ = (width + block_ - 1) / block_;
+    height_ = (height + block_ - 1) / block_;
     options_ = with_method_define(shaders, row_of(m));
     samples_path_ = shader_dir / "adaptive" / "samples.comp.glsl";
     // The samples pass and its image are made where they run: in budget mode now, under a quality target only
     // if asked for (record_samples).
-    if (budget_mode_) make_samples_pass();
+    if (budget_mode_) {
+        make_samples_pass();
+        solve_program_ = gl::program::compute(shader_dir / "adaptive" / "budget_solve.comp.glsl", options_);
+    }
     burley_path_ = shader_dir / "render" / "sss_burley.comp.glsl";
     burley_program_ = gl::program::compute(burley_path_, options_);
     // Zeroed: no histogram yet (the first frame's pixels have no variance and take B), lambda 0.
@@ -70,9 +79,9 @@ history::history(const method& m, int width, int height, const gl::preprocess_op
     const emcv::port::EmcvBudgetBlock empty{};
     glNamedBufferStorage(budget_.id(), sizeof empty, &empty, GL_DYNAMIC_STORAGE_BIT);
     for (int i = 0; i < 2; ++i) {
-        a_[static_cast<std::size_t>(i)] = make_cleared_target(format_a(layout_), width, height);
+        a_[static_cast<std::size_t>(i)] = make_cleared_target(format_a(layout_), width_, height_);
         // The second texture exists only where the layout has one (the EMCM); the others allocate nothing more.
-        if (layout_ == history_layout::emcm2) b_[static_cast<std::size_t>(i)] = make_cleared_target(format_b, width, height);
+        if (layout_ == history_layout::emcm2) b_[static_cast<std::size_t>(i)] = make_cleared_target(format_b, width_, height_);
     }
 }
 
@@ -100,8 +109,18 @@ void history::record_samples() {
     bind_previous();
     bind_for_update();  // this frame's history, the samples image and the budget block, as the burley pass reads them
     glDispatchComputeIndirect(0);
-    // The burley pass reads the images, and under a budget the lambda the last workgroup stored.
+    // The burley pass reads the images, and under a budget the lambda the solve stores.
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    if (budget_mode_) solve_budget();
+}
+
+void history::solve_budget() {
+    if (!budget_mode_) throw std::logic_error("adaptive history: only a budget has a histogram to solve");
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // every workgroup's histogram atomics before the solve reads
+    solve_program_.use();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMCV_ADAPTIVE_BUDGET, budget_.id());
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // lambda and the prior before the burley pass reads them
 }
 
 void history::bind_for_update() const {
@@ -168,13 +187,18 @@ void history::write_previous(const std::vector<texel>& texels) {
 
 gl::float_image history::alpha() const {
     gl::float_image img;
-    img.width = width_;
-    img.height = height_;
+    img.width = pixel_width_;
+    img.height = pixel_height_;
     img.channels = 1;
-    img.pixels.assign(std::size_t(width_) * std::size_t(height_), 0.0f);
+    img.pixels.assign(std::size_t(pixel_width_) * std::size_t(pixel_height_), 0.0f);
     if (layout_ != history_layout::emcm2) return img;
     const std::vector<texel> t = read();
-    for (std::size_t i = 0; i < t.size(); ++i) img.pixels[i] = emcv::port::emcv_cv_coefficient(t[i].a.y, t[i].a.z);
+    // Each pixel shows its block's coefficient (one texel per K x K pixels).
+    for (int y = 0; y < pixel_height_; ++y)
+        for (int x = 0; x < pixel_width_; ++x)
+            img.pixels[std::size_t(y) * std::size_t(pixel_width_) + std::size_t(x)] = emcv::port::emcv_cv_coefficient(
+                t[std::size_t(y / block_) * std::size_t(width_) + std::size_t(x / block_)].a.y,
+                t[std::size_t(y / block_) * std::size_t(width_) + std::size_t(x / block_)].a.z);
     return img;
 }
 

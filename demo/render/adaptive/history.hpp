@@ -4,7 +4,7 @@
 // pass, the budget block, and the method's programs (the renderer's previous G-buffer serves the reprojection
 // test):
 //   adaptive-samples  budget mode, before sss-burley: reproject + validate last frame's history, write the
-//                     per-sample variance, added to the sigma histogram, from which the pass's last workgroup
+//                     per-sample variance, added to the sigma histogram, from which a one-workgroup solve
 //                     solves the scale of N = clamp(lambda sigma, ...) (include/emcv/port/budget.h). Built on
 //                     first use: under a quality target the renderer never records it (tests do, for its N).
 //   sss-burley        the renderer's burley pass built with the method's define: N per pixel (under a quality
@@ -63,9 +63,14 @@ public:
     /// their render slots), and the previous frame's depth, normal and material at EMCV_ADAPTIVE_TEX_PREV_*
     /// (the renderer's, which ping-pong with its G-buffer).
     /// Writes the variance (under a quality target: N, which the burley pass plans alike) into the samples
-    /// image; in budget mode its last workgroup also solves lambda into the budget block. The renderer records
+    /// image; in budget mode the solve dispatch after it (solve_budget) solves lambda into the budget block. The renderer records
     /// it in budget mode only.
     void record_samples();
+    /// Budget mode: the one-workgroup solve of the histogram that the pass just dispatched added to
+    /// (adaptive/budget_solve.comp.glsl): record_samples runs it itself, the renderer after a burley pass that
+    /// planned the next frame. It orders itself after that pass's atomics, and the burley pass that spends
+    /// lambda after it.
+    void solve_budget();
     /// Makes the method's burley program current and binds what it reads and updates besides the burley
     /// pass's own outputs: last frame's history (which a quality target's burley pass reprojects, through the
     /// previous G-buffer the caller binds as for record_samples), this frame's history images, the samples image
@@ -88,11 +93,17 @@ public:
     /// The samples image (0 under a quality target until record_samples made it: the burley pass plans N itself).
     GLuint samples_texture() const noexcept { return samples_.id(); }
 
-    /// The newest history (after the last end_frame: what the next frame reprojects from), read back.
+    /// The block grid's size (EMCV_HISTORY_BLOCK = K: the viewport divided by K, rounded up), the size of the
+    /// history and samples images and of what read() returns.
+    int grid_width() const noexcept { return width_; }
+    int grid_height() const noexcept { return height_; }
+
+    /// The newest history (after the last end_frame: what the next frame reprojects from), read back, one texel
+    /// per block in rows of grid_width().
     std::vector<texel> read() const;
     /// Overwrites that history (tests: a poisoned state).
     void write_previous(const std::vector<texel>& texels);
-    /// cv: alpha = C_fG / C_GG per pixel (port's guarded coefficient); 0 for the other methods.
+    /// cv: alpha = C_fG / C_GG per pixel, its block's (port's guarded coefficient); 0 for the other methods.
     gl::float_image alpha() const;
 
 private:
@@ -104,10 +115,12 @@ private:
 
     history_layout layout_;
     bool budget_mode_;
-    int width_, height_;
+    int block_;           // EMCV_HISTORY_BLOCK: pixels per texel side
+    int pixel_width_ = 0, pixel_height_ = 0;  // the viewport
+    int width_ = 0, height_ = 0;              // the block grid: one texel per block
     gl::preprocess_options options_;  // the method's shader options, for the samples program's first use
     std::filesystem::path samples_path_, burley_path_;
-    gl::program samples_program_, burley_program_, burley_plan_next_program_;
+    gl::program samples_program_, burley_program_, burley_plan_next_program_, solve_program_;
     gl::buffer budget_;  // EmcvBudgetBlock: allocated in every mode (the passes declare it), used in budget mode
     std::array<gl::texture_2d, 2> a_, b_;  // ping-pong: [current_] is this frame's
     int current_ = 0;

@@ -53,6 +53,8 @@ void sss_burley(const frame_context& c, bool plans_next) {
     glBindImageTexture(EMCV_RENDER_IMG_COUNT, r.counts.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32UI);
     glBindImageTexture(EMCV_RENDER_IMG_SSS_OUT, r.sss_out.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
     glDispatchComputeIndirect(0);
+    // A burley pass that planned the next frame histogrammed that frame's variances: solved now, in this pass.
+    if (plans_next) c.history->solve_budget();
     image_barrier_for_reads();
     // the stats block is read back after the frame; an adaptive history may be (history::read)
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);

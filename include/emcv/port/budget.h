@@ -19,7 +19,7 @@
 //            Beside it the block keeps a histogram of the pooled variances before the shrinkage (raw_count) and
 //            their sum of 1 / frames, from which the solve stores the next frame's prior (mean_sigma2,
 //            between_variance; port/history.h, emcv_history_frame_prior).
-//            The solve (emcv::budget_solve in C++, the samples pass's last workgroup on the GPU,
+//            The solve (emcv::budget_solve in C++, one workgroup's dispatch on the GPU,
 //            shaders/adaptive/budget_block.h) searches the bit pattern of lambda (positive floats order as
 //            their bits) for the smallest whose total, the bins added in bin order, reaches the plan: C++ by
 //            bisection, the GPU 64 candidates a round; the total is monotone, so both give the same lambda.
@@ -49,9 +49,9 @@ struct EmcvBudgetBlock {
     float planned;        ///< the total the solve aimed at: B (histogram pixels + zero_pixels)
     uint default_pixels;  ///< pixels without a variance yet (they take B, outside the solve; diagnostic)
     uint zero_pixels;     ///< pixels that take no samples (sub-pixel kernels): their share goes to the others
-    /// Workgroups of this frame's samples pass that have added their pixels: the last one to finish solves
-    /// lambda and resets the block for the next frame (one pass, no separate solve dispatch).
-    uint finished_groups;
+    /// Solves run since the block was created (the solve adds 1 after resetting the histogram; wraps at 2^32):
+    /// a diagnostic that a frame's histogram was solved once, not a count any formula reads.
+    uint solves;
     uint bin_count[EMCV_BUDGET_BINS];     ///< pixels per bin
     uint bin_fraction[EMCV_BUDGET_BINS];  ///< sum of the 10 mantissa bits under the bin's 3
     /// Histogram of the pooled per-sample variance before shrinkage (its sqrt binned as sigma), pixels with a

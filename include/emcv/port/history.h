@@ -88,6 +88,14 @@ EMCV_PORT_BEGIN
 #ifndef EMCV_HISTORY_ETA_EMCM
 #define EMCV_HISTORY_ETA_EMCM 0.2f
 #endif
+/// The grain of the statistics: one history texel, one per-sample variance and one N per K x K block of pixels
+/// (K = EMCV_HISTORY_BLOCK), the block's f and G the means over its scattering pixels (emcv_history_block_batch).
+/// K^2 times less history memory and per-pixel statistics work (reprojection, pooling, histograms, the EMCM
+/// update); the allocation loses the variation of sigma within a block (docs/renderer.md, "Block statistics").
+/// Range: 1, 2 or 4 (a divisor of the 8x8 SSS tile).
+#ifndef EMCV_HISTORY_BLOCK
+#define EMCV_HISTORY_BLOCK 1
+#endif
 /// Saturating frame count of a history texel, an integer exact in binary16. Range: [2, 2048] unsigned.
 #ifndef EMCV_HISTORY_MAX_COUNT
 #define EMCV_HISTORY_MAX_COUNT 1024u
@@ -147,6 +155,16 @@ EMCV_FN vec4 emcv_history_encode_emcm2_cov(EMCV_IN(EmcvEmcm2) s) {
 
 /// cv history, second texture: the means (mu_f, mu_G).
 EMCV_FN vec2 emcv_history_encode_emcm2_means(EMCV_IN(EmcvEmcm2) s) { return s.mean; }
+
+/// A block's batch (EMCV_HISTORY_BLOCK): m scattering pixels that each took n samples, their per-pixel outputs f_i
+/// of per-sample variances sigma_i^2 independent of each other (each pixel draws its own rotation), have the mean
+/// f_b = (1/m) sum f_i of variance (1/m^2) sum sigma_i^2 / n = sbar^2 / (n m), sbar^2 = (1/m) sum sigma_i^2: the
+/// block's mean is a batch mean of n m samples of the per-sample variance sbar^2 (supp. Eq. 25-27), so its history,
+/// pushed with the batch n m, estimates sbar^2, the mean of its pixels' per-sample variances. That is what the
+/// counts need: under a budget the blocks' error sum_b m_b sbar_b^2 / N_b at a total sum_b m_b N_b is smallest at
+/// N_b proportional to sbar_b (the Neyman allocation of emcv/port/budget.h, each block weighted by its m_b pixels),
+/// and under a quality target N_b = sbar_b^2 / target brings the block's pixels to the target on average.
+EMCV_FN float emcv_history_block_batch(uint n, uint pixels) { return float(n * pixels); }
 
 /// Whether a previous frame's texel at linear depth `prev_depth` shows the surface expected there at
 /// `expected_prev_depth`: within 5% of it (false for NaN). Every history that is reprojected uses it (the

@@ -52,7 +52,7 @@ static_assert(sizeof(EmcvMovingStats) == 20 && offsetof(EmcvMovingStats, varianc
 /// EmcvBudgetBlock: 4-byte scalars and uint arrays (stride 4), the same in std430 and C++: the port's struct.
 using EmcvBudgetBlock = emcv::port::EmcvBudgetBlock;
 static_assert(offsetof(EmcvBudgetBlock, planned) == 4 && offsetof(EmcvBudgetBlock, default_pixels) == 8 &&
-                  offsetof(EmcvBudgetBlock, zero_pixels) == 12 && offsetof(EmcvBudgetBlock, finished_groups) == 16 &&
+                  offsetof(EmcvBudgetBlock, zero_pixels) == 12 && offsetof(EmcvBudgetBlock, solves) == 16 &&
                   offsetof(EmcvBudgetBlock, bin_count) == 20 &&
                   offsetof(EmcvBudgetBlock, bin_fraction) == 20 + 4 * EMCV_BUDGET_BINS &&
                   offsetof(EmcvBudgetBlock, raw_count) == 20 + 8 * EMCV_BUDGET_BINS &&
