@@ -11,8 +11,8 @@ the command that regenerates it and the commit it was made at (tests/docs checks
 are written only after every requested part succeeded (each through a temporary name and a rename).
 
 --check regenerates the named parts without writing anything and compares them with docs/demo.md's blocks,
-times masked (they are the machine's, not the code's: sss_ms, sss_p95, frame_ms, the SSS pass time ratios and
-the run's wall clock); everything else (pass lists, sample counts, PSNR) is deterministic on llvmpipe. Exit
+times masked (they are the machine's, not the code's: sss_ms, sss_p95, frame_ms, the SSS pass time ratios, the
+equal-time lines after their window and the run's wall clock); everything else (pass lists, sample counts, PSNR) is deterministic on llvmpipe. Exit
 status 0 when the docs agree, 1 with a diff when they do not, 77 when there is no OpenGL display (a skip for
 CTest) unless EMCV_REQUIRE_GL=1. The test command runs it for the cheap parts (tests/docs, label docs).
 """
@@ -33,9 +33,12 @@ IMAGES = os.path.join(ROOT, "docs", "images")
 PARTS = ["passes", "summary", "summary-ci", "no-sss", "images"]
 CHECKABLE = ["passes", "summary", "summary-ci"]  # the parts whose text is deterministic once times are masked
 
-SUMMARY_ARGS = ["--scene", "light-off", "--method", "all,burley-8", "--spp-budget", "8", "--size", "256x256"]
+# The quick start's job (scripts/quickstart.sh): burley-8 for the equal-samples lines, burley-16 (in all), -32 and
+# -64 so that the burley runs' SSS times bracket the adaptive methods' for the equal-time lines.
+SUMMARY_METHODS = "all,burley-8,burley-32,burley-64"
+SUMMARY_ARGS = ["--scene", "light-off", "--method", SUMMARY_METHODS, "--spp-budget", "8", "--size", "256x256"]
 # The main job at the test command's size: what the docs test re-runs in seconds.
-SUMMARY_CI_ARGS = ["--scene", "light-off", "--method", "all,burley-8", "--spp-budget", "8", "--size", "64x64"]
+SUMMARY_CI_ARGS = ["--scene", "light-off", "--method", SUMMARY_METHODS, "--spp-budget", "8", "--size", "64x64"]
 NO_SSS_ARGS = ["--scene", "no-sss", "--method", "diffuse,burley-16,separable-17", "--size", "256x256",
                "--frames", "120"]
 # The same comparison on a scene whose SSS object is visible: what the SSS passes cost when they do run.
@@ -106,17 +109,22 @@ def part_summary_ci(demo, tmp):
 
 
 SUMMARY_ROW = re.compile(r"^(\S+\s+\d+)\s+[0-9.]+\s+[0-9.]+\s+[0-9.]+(\s.*)$")
+# An equal-time line: what follows its window (the method's time, the burley runs that bracket it or the words
+# that none does, the interpolated PSNR) all rests on the machine's times.
+EQUAL_TIME_LINE = re.compile(r"^(\S+ vs burley-N at \S+ SSS time, frames \d+-\d+ \([^)]*\)): .*$")
 
 
 def masked(text):
     """The text with the machine's times replaced by T: the summary rows' sss_ms, sss_p95 and frame_ms, the
-    comparison lines' SSS pass time ratios and the run's wall clock."""
+    comparison lines' SSS pass time ratios, everything the equal-time lines say after their window and the run's
+    wall clock."""
     lines = []
     for line in text.splitlines():
         m = SUMMARY_ROW.match(line)
         if m:
             line = m.group(1) + " T T T" + re.sub(r"\s+", " ", m.group(2))
         line = re.sub(r"SSS pass time [0-9.]+x", "SSS pass time Tx", line)
+        line = EQUAL_TIME_LINE.sub(r"\1: T", line)
         line = re.sub(r"\(wall clock [0-9]+ s", "(wall clock T s", line)
         line = re.sub(r"made at commit [0-9a-f]+", "made at commit C", line)
         lines.append(line.rstrip())

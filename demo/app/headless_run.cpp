@@ -18,6 +18,8 @@
 #include "render_flags.hpp"
 #include "render/renderer.hpp"
 
+#include <emcv/port/history.h>
+
 namespace emcv::demo::app {
 namespace {
 
@@ -69,6 +71,21 @@ void require_finite(const gl::float_image& image, const char* what, const method
     if (bad > 0)
         throw std::runtime_error("frame " + std::to_string(frame) + ", method " + m.name() + ": the " + what +
                                  " image holds " + std::to_string(bad) + " NaN or infinite values");
+}
+
+/// Per pixel, the value the adaptive methods track and a quality target bounds the variance of: the gamma-space
+/// luminance of albedo * scattered irradiance * exposure (shaders/adaptive/history_io.h, emcv_adaptive_tracked),
+/// with the port's own emcv_gamma_luminance. Meaningful at SSS pixels of a method whose SSS passes ran (the
+/// reference's held result included: nothing else writes its scattered texture).
+std::vector<float> tracked_values(const renderer& r, float exposure) {
+    const gl::float_image scattered = r.scattered_irradiance(), albedo = r.surface_albedo();
+    std::vector<float> out(static_cast<std::size_t>(scattered.width) * static_cast<std::size_t>(scattered.height));
+    for (std::size_t p = 0; p < out.size(); ++p) {
+        const glm::vec3 a(albedo.pixels[4 * p], albedo.pixels[4 * p + 1], albedo.pixels[4 * p + 2]);
+        const glm::vec3 f(scattered.pixels[4 * p], scattered.pixels[4 * p + 1], scattered.pixels[4 * p + 2]);
+        out[p] = emcv::port::emcv_gamma_luminance(a * f * exposure);
+    }
+    return out;
 }
 
 /// One method being rendered: its renderer and the previous frame's display and shown images (temporal error).
@@ -129,6 +146,7 @@ run_result run_headless(const scene& s, const options& o, int frames, timing clo
         const gl::float_image ref_linear = ref.r.linear();
         require_finite(ref_linear, "linear", ref.m, frame);
         const pixel_mask sss = mask_of(ref.r.sss_mask());
+        const std::vector<float> ref_tracked = tracked_values(ref.r, ro.exposure);
         std::optional<gl::float_image>& ref_previous = ref.previous_display;
 
         // The other methods start one further along each frame, so that no method always renders right
@@ -153,6 +171,10 @@ run_result run_headless(const scene& s, const options& o, int frames, timing clo
             row.psnr_db = psnr_db(view_of(display), view_of(ref_display));
             row.psnr_sss_db = psnr_db(view_of(display), view_of(ref_display), &sss);
             row.rel_mse = relative_mse(view_of(linear), view_of(ref_linear));
+            if (stats.sss_pixels > 0 && ref_stats.sss_pixels > 0)
+                row.tracked_mse = is_reference ? 0.0
+                                               : mean_squared_difference(tracked_values(run.r, ro.exposure),
+                                                                         ref_tracked, sss);
             if (run.previous_display && ref_previous)
                 row.temporal_error = temporal_error(view_of(display), view_of(*run.previous_display),
                                                     view_of(ref_display), view_of(*ref_previous));

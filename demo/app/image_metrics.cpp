@@ -49,6 +49,24 @@ std::optional<double> mean_squared_error(const image_view& image, const image_vi
     return sum / static_cast<double>(3 * selected);
 }
 
+std::optional<double> mean_squared_difference(const std::vector<float>& values, const std::vector<float>& reference,
+                                              const pixel_mask& mask) {
+    if (values.size() != reference.size() || mask.size() != values.size())
+        throw std::invalid_argument("mean_squared_difference: sizes differ (" + std::to_string(values.size()) + ", " +
+                                    std::to_string(reference.size()) + " and mask " + std::to_string(mask.size()) +
+                                    ")");
+    double sum = 0.0;
+    std::size_t selected = 0;
+    for (std::size_t p = 0; p < values.size(); ++p) {
+        if (mask[p] == 0) continue;
+        ++selected;
+        const double d = static_cast<double>(values[p]) - static_cast<double>(reference[p]);
+        sum += d * d;
+    }
+    if (selected == 0) return std::nullopt;
+    return sum / static_cast<double>(selected);
+}
+
 std::optional<double> psnr_db(const image_view& display, const image_view& reference_display,
                               const pixel_mask* mask) {
     const std::optional<double> mse = mean_squared_error(display, reference_display, mask);

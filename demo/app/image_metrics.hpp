@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Image metrics of the demo's metrics.csv: PSNR (whole frame and SSS pixels only), relative MSE and temporal
-// error. Pure functions over float images; definitions in docs/demo.md ("Outputs"). No GL.
+// Image metrics of the demo's metrics.csv: PSNR (whole frame and SSS pixels only), relative MSE, temporal
+// error and the tracked value's squared error. Pure functions over float images; definitions in docs/demo.md ("Outputs"). No GL.
 #pragma once
 
 #include <cstdint>
@@ -25,6 +25,12 @@ using pixel_mask = std::vector<std::uint8_t>;
 /// Throws std::invalid_argument when the images (or the mask) differ in size or have fewer than 3 channels.
 std::optional<double> mean_squared_error(const image_view& image, const image_view& reference,
                                          const pixel_mask* mask = nullptr);
+
+/// Mean squared difference of two one-value-per-pixel images (the tracked values of a method and of the
+/// reference) over the pixels `mask` selects; empty when it selects none. Throws std::invalid_argument when the
+/// three differ in size.
+std::optional<double> mean_squared_difference(const std::vector<float>& values, const std::vector<float>& reference,
+                                              const pixel_mask& mask);
 
 /// PSNR in dB of display images with values in [0, 1] (peak 1): 10 log10(1 / MSE); +inf when MSE == 0,
 /// empty when no pixel is selected.

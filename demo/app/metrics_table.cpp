@@ -46,7 +46,8 @@ std::string metrics_csv(const std::vector<metrics_row>& rows) {
             << number_text(r.mean_spp) << ',' << r.max_spp << ',' << optional_text(r.psnr_db) << ','
             << optional_text(r.psnr_sss_db) << ',' << number_text(r.rel_mse) << ','
             << optional_text(r.temporal_error) << ',' << optional_text(r.psnr_resolved_db) << ','
-            << optional_text(r.psnr_sss_resolved_db) << ',' << optional_text(r.temporal_error_resolved) << '\n';
+            << optional_text(r.psnr_sss_resolved_db) << ',' << optional_text(r.temporal_error_resolved) << ','
+            << optional_text(r.tracked_mse) << '\n';
     return out.str();
 }
 
@@ -71,7 +72,8 @@ std::string metrics_json(const std::vector<metrics_row>& rows, const std::string
                              {"temporal_error", json_number(r.temporal_error)},
                              {"psnr_resolved_db", json_number(r.psnr_resolved_db)},
                              {"psnr_sss_resolved_db", json_number(r.psnr_sss_resolved_db)},
-                             {"temporal_error_resolved", json_number(r.temporal_error_resolved)}});
+                             {"temporal_error_resolved", json_number(r.temporal_error_resolved)},
+                             {"tracked_mse", json_number(r.tracked_mse)}});
         nlohmann::json passes = nlohmann::json::array();
         for (const auto& [name, ms] : r.passes) passes.push_back({{"name", name}, {"ms", json_number(ms)}});
         j["rows"].back()["passes"] = std::move(passes);

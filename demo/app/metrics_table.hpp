@@ -29,14 +29,19 @@ struct metrics_row {
     std::optional<double> psnr_resolved_db;
     std::optional<double> psnr_sss_resolved_db;
     std::optional<double> temporal_error_resolved;
+    /// Mean over the SSS pixels of (y - y_ref)^2, y the value the adaptive methods track (gamma-space luminance
+    /// of albedo * scattered irradiance * exposure) and y_ref the reference's: the measure --target-variance V
+    /// bounds (each SSS pixel's output variance, docs/renderer.md). Empty when the method's SSS passes did not
+    /// run (diffuse) or no SSS pixel is visible.
+    std::optional<double> tracked_mse;
     /// Each recorded pass's name and time in ms, in recording order (metrics.json only; sss_ms and frame_ms
     /// are sums of these).
     std::vector<std::pair<std::string, double>> passes;
 };
 
-inline constexpr std::array<const char*, 13> metrics_columns = {
+inline constexpr std::array<const char*, 14> metrics_columns = {
     "frame", "method", "sss_ms", "frame_ms", "mean_spp", "max_spp", "psnr_db", "psnr_sss_db", "rel_mse",
-    "temporal_error", "psnr_resolved_db", "psnr_sss_resolved_db", "temporal_error_resolved"};
+    "temporal_error", "psnr_resolved_db", "psnr_sss_resolved_db", "temporal_error_resolved", "tracked_mse"};
 
 /// Writing an output failed; what() names the file.
 class output_error : public std::runtime_error {

@@ -54,6 +54,28 @@ std::optional<std::string> compare_after_change(const std::vector<metrics_row>& 
                                                 const std::string& name, const std::string& baseline,
                                                 int window = switch_window_frames, int timing_from_frame = 1);
 
+/// The summary's equal-time line: `name` (cv, spvg, cv-notex) against the burley-N runs of the same rows at
+/// `name`'s own SSS time, over the same window as compare_after_change (its times from `timing_from_frame` on).
+/// The burley-N runs' mean PSNR is taken as a function of log SSS time, piecewise linear between the runs
+/// sorted by time; at `name`'s mean SSS time t, between the runs at t1 <= t <= t2 with PSNRs p1, p2:
+/// p(t) = p1 + (p2 - p1) ln(t / t1) / ln(t2 / t1). The line gives both runs, `name`'s time and the PSNR gap
+/// (name minus p(t)), then, when every run has it, the same gap of the resolved images. When t is beyond the
+/// slowest burley run's time or below the fastest's, the line says so in words ("cv's SSS time is beyond
+/// burley-32's ...: no equal-time comparison") instead of extrapolating. Empty when `name` did not run in the
+/// window, took no SSS time or has no finite PSNR, or when no burley-N run did.
+std::optional<std::string> compare_at_equal_time(const std::vector<metrics_row>& rows, int first_change,
+                                                 const std::string& name, int window = switch_window_frames,
+                                                 int timing_from_frame = 1);
+
+/// The summary's quality-target line: for each of `names` that has a tracked_mse in the window (see
+/// compare_after_change for the window), the mean over frames of tracked_mse, the squared error per SSS pixel
+/// of the value the adaptive methods track, in the units of `target_variance` V (the variance a quality target
+/// aims each SSS pixel's output at), as a multiple of V, "met" (mean <= V) or "missed", and on how many of the
+/// frames the frame's own mean was at most V. Empty when none has one. Throws std::invalid_argument for a V that is not finite and > 0.
+std::optional<std::string> compare_with_target(const std::vector<metrics_row>& rows, int first_change,
+                                               const std::vector<std::string>& names, double target_variance,
+                                               int window = switch_window_frames);
+
 /// The table, then each of `notes` on its own line (the cv vs spvg line after the switch).
 std::string format_summary(const std::vector<method_summary>& summaries, const std::vector<std::string>& notes = {});
 

@@ -797,6 +797,21 @@ def at_time(curve, t):
     return curve[0][1]
 
 
+def equal_time_gap(curve, t, value):
+    """(gap, text): `value` (an adaptive method's PSNR at its own SSS time t) minus the burley curve's PSNR at t
+    (at_time: linear in log time between the two burley runs that bracket t), and its text; outside the burley
+    runs' times no gap (None) and the words "beyond range" (slower than the slowest run) or "below range" (faster
+    than the fastest), not an extrapolation; "n/a" without a curve, a time or a value."""
+    if not curve or t is None or not math.isfinite(t) or t <= 0 or value is None or not math.isfinite(value):
+        return None, "n/a"
+    if t > curve[-1][0]:
+        return None, "beyond range"
+    if t < curve[0][0]:
+        return None, "below range"
+    gap = value - at_time(curve, t)
+    return gap, sign(gap)
+
+
 def equal_time_table(d, ms):
     lines = ["| scene | SSS ms (burley-B's) | raw: best (dB) | over next | over burley | resolved: best (dB) | "
              "over next | over burley | in range |", "|---|---|---|---:|---:|---|---:|---:|---|"]
@@ -823,12 +838,23 @@ def equal_time_table(d, ms):
 
 
 def pareto_time_table(d, ms):
-    lines = ["| scene | method | B | SSS ms (median, frames 1..) | x burley-B |", "|---|---|---:|---:|---:|"]
+    """Per scene, setting and method: the SSS ms, its ratio to burley-B's, and for the adaptive methods the PSNR
+    gap (raw, resolved; frames MEAN_FROM..) to the burley runs interpolated at the method's own SSS time."""
+    lines = ["| scene | method | B | SSS ms (median, frames 1..) | x burley-B | dB vs burley at equal time, raw | "
+             "resolved |", "|---|---|---:|---:|---:|---:|---:|"]
+    curves = {}
     for (scene, group, m), t in sorted(ms.items(), key=lambda kv: (d.scenes.index(kv[0][0]) if kv[0][0] in d.scenes
                                                                   else 99, d.groups.index(kv[0][1]), kv[0][2])):
         ref = ms.get((scene, group, f"burley-{group[1:]}")) if group != "fixed" else None
+        gaps = ["-", "-"]
+        if m in ADAPTIVE:
+            key = ("quality", scene, group, m)
+            for i, column in enumerate(("psnr_db", "psnr_resolved_db")):
+                if (scene, column) not in curves:
+                    curves[(scene, column)] = family_curve(d, ms, scene, "burley", column)
+                gaps[i] = equal_time_gap(curves[(scene, column)], t, d.window_mean(key, column, MEAN_FROM))[1]
         lines.append(f"| {scene} | {m} | {setting_of(group, m)} | {fmt(t)} | "
-                     f"{fmt(t / ref) if ref else '-'} |")
+                     f"{fmt(t / ref) if ref else '-'} | {gaps[0]} | {gaps[1]} |")
     return "\n".join(lines)
 
 
@@ -977,6 +1003,7 @@ def plot_pareto(d, ms, out_dir, device):
             for row, (column, title) in enumerate((("psnr_db", "raw"), ("psnr_resolved_db", "resolved (taa)"))):
                 ax = axes[row][col]
                 vi = DEMO_COLUMNS[2:].index(column)
+                burley = family_curve(d, ms, scene, "burley", column) if kind == "ms" else []
                 for family in FAMILIES:
                     pts = []
                     for m, group, *vals in points:
@@ -984,8 +1011,12 @@ def plot_pareto(d, ms, out_dir, device):
                             continue
                         x = vals[0] if kind == "spp" else ms.get((scene, group, m), math.nan)
                         if math.isfinite(x) and x > 0 and math.isfinite(vals[vi]):
-                            pts.append((x, vals[vi], m.split("-")[-1] if family in ("burley", "separable")
-                                        else group[1:]))
+                            label = m.split("-")[-1] if family in ("burley", "separable") else group[1:]
+                            if kind == "ms" and m in ADAPTIVE:  # the pareto-time table's equal-time column
+                                gap, text = equal_time_gap(burley, x, vals[vi])
+                                if gap is not None:  # outside burley's times the point's place says it
+                                    label += f": {text} dB"
+                            pts.append((x, vals[vi], label))
                     pts.sort()
                     if pts:
                         ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", color=COLOURS[family], label=family)
@@ -999,7 +1030,9 @@ def plot_pareto(d, ms, out_dir, device):
                 ax.set_ylabel(f"PSNR {title}, dB (mean, frames {MEAN_FROM}..)")
                 ax.grid(True, which="both", alpha=0.3)
                 ax.legend(fontsize=7, loc="lower right")
-        fig.suptitle(f"{scene}: quality at equal cost; labels: B, or separable's taps ({device})", fontsize=10)
+        fig.suptitle(f"{scene}: quality at equal cost; labels: B, or separable's taps; against SSS ms, an adaptive "
+                     f"method's B: its dB over burley at its own time, where burley's times reach it ({device})",
+                     fontsize=10)
         save_fig(fig, out_dir, f"pareto-{scene}.png")
 
 

@@ -284,12 +284,12 @@ TEST_CASE("a small headless run writes frames and complete metrics files", "[app
     std::string line;
     REQUIRE(std::getline(csv, line));
     CHECK(line == "frame,method,sss_ms,frame_ms,mean_spp,max_spp,psnr_db,psnr_sss_db,rel_mse,temporal_error,"
-                  "psnr_resolved_db,psnr_sss_resolved_db,temporal_error_resolved");
+                  "psnr_resolved_db,psnr_sss_resolved_db,temporal_error_resolved,tracked_mse");
     std::size_t rows = 0;
     while (std::getline(csv, line)) {
         INFO(line);
         const std::vector<std::string> f = emcv_test::split_fields(line, ',');
-        REQUIRE(f.size() == 13);
+        REQUIRE(f.size() == 14);
         ++rows;
         const bool reference = f[1] == "reference";
         for (std::size_t c : {2u, 3u, 4u, 5u, 8u}) CHECK(std::isfinite(std::stod(f[c])));
@@ -313,6 +313,10 @@ TEST_CASE("a small headless run writes frames and complete metrics files", "[app
         if (reference) CHECK(f[10] == "inf");
         else CHECK(std::isfinite(std::stod(f[10])));
         CHECK(f[12].empty() == (f[0] == "0"));
+        // The tracked value's squared error: 0 for the reference, none without SSS passes, else a number
+        if (reference) CHECK(std::stod(f[13]) == 0.0);
+        else if (f[1] == "diffuse") CHECK(f[13].empty());
+        else CHECK(std::stod(f[13]) >= 0.0);
     }
     CHECK(rows == 3 * methods.size());
 
@@ -322,7 +326,7 @@ TEST_CASE("a small headless run writes frames and complete metrics files", "[app
     CHECK(j["resolve"] == "taa");
     CHECK(r.out.find("clock: wall clock, glFinish at every pass boundary") != std::string::npos);
     for (const auto& row : j["rows"]) {
-        CHECK(row.size() == 14);  // the columns and the passes
+        CHECK(row.size() == 15);  // the columns and the passes
         if (row["method"] == "reference") CHECK(row["psnr_db"].is_null());
         else CHECK(row["psnr_db"].is_number());
         double sum = 0.0;  // frame_ms is the sum of the passes, added in recording order
@@ -576,6 +580,13 @@ TEST_CASE("with spvg and cv on a light switch the summary compares them from the
           std::string::npos);
     CHECK(r.out.find("SSS pass time ") != std::string::npos);
     CHECK(r.out.find(" dB (cv ") != std::string::npos);
+    // The default quality target: each adaptive method's tracked error against V, from the switch and every frame.
+    CHECK(r.out.find("target variance V = 1.00e-04, frames 3-5 (from the first light change at frame 3): squared "
+                     "error of the tracked value per SSS pixel against the reference, mean over frames: cv ") !=
+          std::string::npos);
+    CHECK(r.out.find("target variance V = 1.00e-04, frames 0-5 (every frame): ") != std::string::npos);
+    CHECK(r.out.find("; spvg ") != std::string::npos);
+    CHECK(r.out.find("vs burley-N") == std::string::npos);  // no burley-N run: no equal-time line
 
     const emcv_test::command_result without_cv =
         run_demo("--scene '" + data_dir + "/switch.json' --size 32x32 --method spvg --seed 7");

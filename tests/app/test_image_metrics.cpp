@@ -89,3 +89,13 @@ TEST_CASE("temporal error counts change the reference does not have", "[app][met
     one[4 + 1] += 0.6f;
     CHECK(app::temporal_error(view(one, 2, 2), d, d, d) == Catch::Approx(std::sqrt(0.36 / 12.0)).epsilon(1e-5));
 }
+
+TEST_CASE("the tracked value's squared error averages over the selected pixels only", "[app][metrics]") {
+    const std::vector<float> values = {0.1f, 0.2f, 0.3f, 0.4f}, reference = {0.1f, 0.1f, 0.1f, 0.1f};
+    // Pixels 0, 1 and 3: (0 + 0.1^2 + 0.3^2) / 3 = 0.1 / 3; pixel 2 (0.2 off) is not selected.
+    CHECK(*app::mean_squared_difference(values, reference, pixel_mask{1, 1, 0, 1}) ==
+          Catch::Approx(0.1 / 3.0).epsilon(1e-5));
+    CHECK_FALSE(app::mean_squared_difference(values, reference, pixel_mask{0, 0, 0, 0}));  // no SSS pixel
+    CHECK_THROWS_AS(app::mean_squared_difference(values, {0.1f}, pixel_mask{1, 1, 1, 1}), std::invalid_argument);
+    CHECK_THROWS_AS(app::mean_squared_difference(values, reference, pixel_mask{1}), std::invalid_argument);
+}

@@ -25,10 +25,12 @@ std::vector<app::metrics_row> sample_rows() {
     const double inf = std::numeric_limits<double>::infinity();
     std::vector<app::metrics_row> rows;
     rows.push_back({0, "burley-16", 1.5, 4.0, 16.0, 16, 30.0, 25.0, 0.02, std::nullopt, 38.0, 33.0, std::nullopt,
-                    {{"gbuffer", 2.5}, {"sss-burley", 1.5}}});
-    rows.push_back({0, "reference", 9.0, 12.0, 1024.0, 1024, inf, inf, 0.0, std::nullopt, inf, inf, std::nullopt, {}});
-    rows.push_back({1, "burley-16", 2.5, 5.0, 16.0, 16, 32.0, std::nullopt, 0.01, 0.125, 40.5, std::nullopt, 0.0625, {}});
-    rows.push_back({1, "reference", 9.0, 12.0, 1024.0, 1024, inf, inf, 0.0, 0.0, inf, inf, 0.0, {}});
+                    0.00025, {{"gbuffer", 2.5}, {"sss-burley", 1.5}}});
+    rows.push_back({0, "reference", 9.0, 12.0, 1024.0, 1024, inf, inf, 0.0, std::nullopt, inf, inf, std::nullopt, 0.0,
+                    {}});
+    rows.push_back({1, "burley-16", 2.5, 5.0, 16.0, 16, 32.0, std::nullopt, 0.01, 0.125, 40.5, std::nullopt, 0.0625,
+                    std::nullopt, {}});
+    rows.push_back({1, "reference", 9.0, 12.0, 1024.0, 1024, inf, inf, 0.0, 0.0, inf, inf, 0.0, 0.0, {}});
     return rows;
 }
 
@@ -39,20 +41,20 @@ TEST_CASE("metrics.csv has the contract's columns and writes inf and undefined v
     std::string line;
     std::getline(csv, line);
     CHECK(line == "frame,method,sss_ms,frame_ms,mean_spp,max_spp,psnr_db,psnr_sss_db,rel_mse,temporal_error,"
-                  "psnr_resolved_db,psnr_sss_resolved_db,temporal_error_resolved");
+                  "psnr_resolved_db,psnr_sss_resolved_db,temporal_error_resolved,tracked_mse");
     std::getline(csv, line);
-    CHECK(line == "0,burley-16,1.5,4,16,16,30,25,0.02,,38,33,");
+    CHECK(line == "0,burley-16,1.5,4,16,16,30,25,0.02,,38,33,,0.00025");
     std::getline(csv, line);
-    CHECK(line == "0,reference,9,12,1024,1024,inf,inf,0,,inf,inf,");
+    CHECK(line == "0,reference,9,12,1024,1024,inf,inf,0,,inf,inf,,0");
     std::getline(csv, line);
-    CHECK(line == "1,burley-16,2.5,5,16,16,32,,0.01,0.125,40.5,,0.0625");
+    CHECK(line == "1,burley-16,2.5,5,16,16,32,,0.01,0.125,40.5,,0.0625,");
 }
 
 TEST_CASE("metrics.json carries every column, inf and undefined as null", "[app][metrics]") {
     const nlohmann::json j = nlohmann::json::parse(app::metrics_json(sample_rows()));
     REQUIRE(j["rows"].size() == 4);
-    CHECK(j["columns"].size() == 13);
-    for (const auto& row : j["rows"]) CHECK(row.size() == 14);  // the columns and the passes
+    CHECK(j["columns"].size() == 14);
+    for (const auto& row : j["rows"]) CHECK(row.size() == 15);  // the columns and the passes
     CHECK(j["rows"][0]["psnr_db"].get<double>() == 30.0);
     CHECK(j["rows"][0]["temporal_error"].is_null());
     CHECK(j["rows"][1]["psnr_db"].is_null());
@@ -61,6 +63,8 @@ TEST_CASE("metrics.json carries every column, inf and undefined as null", "[app]
     CHECK(j["rows"][0]["psnr_resolved_db"].get<double>() == 38.0);
     CHECK(j["rows"][2]["psnr_sss_resolved_db"].is_null());
     CHECK(j["rows"][2]["temporal_error_resolved"].get<double>() == 0.0625);
+    CHECK(j["rows"][0]["tracked_mse"].get<double>() == 0.00025);
+    CHECK(j["rows"][2]["tracked_mse"].is_null());
     CHECK(j["rows"][3]["method"] == "reference");
     CHECK_FALSE(j.contains("sampling"));
     CHECK_FALSE(j.contains("timing"));

@@ -22,13 +22,13 @@ std::vector<app::metrics_row> rows_with_change(int change, int frames) {
     for (int f = 0; f < frames; ++f) {
         const bool after = f >= change, outside = f >= change + app::switch_window_frames;
         app::metrics_row spvg{f, "spvg", after ? 4.0 : 1.0, 5.0, after ? 40.0 : 8.0, 64, after ? 30.0 : 40.0,
-                              std::nullopt, 0.0, std::nullopt, std::nullopt, std::nullopt, std::nullopt, {}};
+                              std::nullopt, 0.0, std::nullopt, std::nullopt, std::nullopt, std::nullopt, std::nullopt, {}};
         app::metrics_row cv{f, "cv", after ? 2.0 : 1.0, 5.0, after ? 10.0 : 8.0, 64, after ? 29.0 : 40.0,
-                            std::nullopt, 0.0, std::nullopt, std::nullopt, std::nullopt, std::nullopt, {}};
+                            std::nullopt, 0.0, std::nullopt, std::nullopt, std::nullopt, std::nullopt, std::nullopt, {}};
         if (outside) cv.mean_spp = 1000.0, cv.psnr_db = 0.0, cv.sss_ms = 100.0;
         rows.push_back(spvg);
         rows.push_back(cv);
-        rows.push_back({f, "reference", 9.0, 12.0, 1024.0, 1024, std::nullopt, std::nullopt, 0.0, std::nullopt, std::nullopt, std::nullopt, std::nullopt, {}});
+        rows.push_back({f, "reference", 9.0, 12.0, 1024.0, 1024, std::nullopt, std::nullopt, 0.0, std::nullopt, std::nullopt, std::nullopt, std::nullopt, std::nullopt, {}});
     }
     return rows;
 }

@@ -1,0 +1,108 @@
+#!/usr/bin/python3
+"""scripts/eval/run_eval.py's equal-time column (each adaptive method's PSNR gap to the burley runs interpolated in
+log SSS time at its own SSS time), on data made up here (no renderer):
+  - the pareto-time table's two new cells, raw and resolved, worked by hand in the comments;
+  - "beyond range" past the slowest burley run and "below range" under the fastest, not an extrapolation;
+  - "-" for the methods that are not adaptive;
+  - the Pareto plot's SSS-ms panel labels each adaptive point with the same gap where there is one.
+
+    /usr/bin/python3 tests/eval/test_run_eval_equal_time.py
+"""
+import math
+import os
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from script_checks import check, finish  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "scripts", "eval"))
+import run_eval  # noqa: E402
+
+SCENE = "static"
+# (group, method) -> (SSS ms, raw dB, resolved dB), the same every frame from MEAN_FROM on.
+POINTS = {
+    ("B8", "burley-8"): (2.0, 40.0, 50.0),
+    ("B32", "burley-32"): (8.0, 46.0, 53.0),
+    ("B4", "burley-4"): (1.0, 37.0, 47.0),
+    ("B8", "cv"): (3.0, 44.0, 52.0),        # between burley-8 and burley-32
+    ("B8", "spvg"): (20.0, 49.0, 56.0),     # slower than burley-32, the slowest
+    ("B4", "cv-notex"): (0.5, 30.0, 40.0),  # faster than burley-4, the fastest
+    ("B32", "cv"): (8.0, 45.5, 54.0),       # at burley-32's own time
+    ("fixed", "separable-17"): (4.0, 45.0, 45.0),
+}
+
+
+def made_up_data():
+    """A run_eval.Data with POINTS as its quality series (frames MEAN_FROM..MEAN_FROM+9), and the cost stage's ms."""
+    d = object.__new__(run_eval.Data)
+    d.jobs, d.raw_dir, d.lights, d.seeds = [], None, {}, {}
+    d.scenes, d.groups = [SCENE], ["fixed", "B4", "B8", "B32"]
+    d.series, ms = {}, {}
+    for (group, method), (t, raw, resolved) in POINTS.items():
+        frame = {c: math.nan for c in run_eval.DEMO_COLUMNS[2:]}
+        frame.update(psnr_db=raw, psnr_resolved_db=resolved, mean_spp=8.0)
+        d.series[("quality", SCENE, group, method)] = {f: dict(frame) for f in range(run_eval.MEAN_FROM,
+                                                                                     run_eval.MEAN_FROM + 10)}
+        ms[(SCENE, group, method)] = t
+    return d, ms
+
+
+def table_cells(table):
+    """(method, B) -> the row's cells."""
+    rows = {}
+    for line in table.splitlines()[2:]:
+        cells = [c.strip() for c in line.strip("|").split("|")]
+        rows[(cells[1], cells[2])] = cells
+    return rows
+
+
+def main():
+    d, ms = made_up_data()
+    table = run_eval.pareto_time_table(d, ms)
+    header = table.splitlines()[0]
+    check("dB vs burley at equal time, raw" in header and header.rstrip().endswith("resolved |"),
+          f"the pareto-time table has the equal-time columns (header: {header})")
+    rows = table_cells(table)
+    # cv at 3 ms lies between burley-8 (t1 = 2 ms, p1 = 40 dB) and burley-32 (t2 = 8 ms, p2 = 46 dB):
+    #   p(3) = p1 + (p2 - p1) ln(t / t1) / ln(t2 / t1) = 40 + 6 ln(1.5) / ln(4) = 40 + 6 x 0.292481 = 41.754888,
+    #   cv's gap 44 - 41.754888 = +2.25 dB (linear in time: 41.0, +3.00; t1 and t2 swapped: 44.245, -0.25).
+    # Resolved: 50 + 3 x 0.292481 = 50.877444, cv 52: +1.12 dB.
+    check(rows[("cv", "8")][5:7] == ["+2.25", "+1.12"], f"cv at B = 8: +2.25 raw, +1.12 resolved (got {rows[('cv', '8')]})")
+    # cv at B = 32 takes burley-32's own 8 ms: 45.5 - 46 = -0.50, 54 - 53 = +1.00.
+    check(rows[("cv", "32")][5:7] == ["-0.50", "+1.00"], f"cv at B = 32: -0.50, +1.00 (got {rows[('cv', '32')]})")
+    check(rows[("spvg", "8")][5:7] == ["beyond range", "beyond range"],
+          f"spvg, slower than burley-32: beyond range (got {rows[('spvg', '8')]})")
+    check(rows[("cv-notex", "4")][5:7] == ["below range", "below range"],
+          f"cv-notex, faster than burley-4: below range (got {rows[('cv-notex', '4')]})")
+    for key in (("burley-8", "8"), ("separable-17", "-")):
+        check(rows[key][5:7] == ["-", "-"], f"{key[0]} is not adaptive: no equal-time cells (got {rows[key]})")
+    check(run_eval.equal_time_gap([], 3.0, 44.0) == (None, "n/a"), "no burley curve: n/a")
+
+    # The plot's SSS-ms panel: the adaptive points' labels carry the same words (matplotlib's Agg backend).
+    labels = []
+    plt = run_eval.plt_module()
+    original = plt.Axes.annotate
+
+    def record(ax, text, *args, **kwargs):
+        labels.append(text)
+        return original(ax, text, *args, **kwargs)
+
+    plt.Axes.annotate = record
+    try:
+        with tempfile.TemporaryDirectory() as out:
+            run_eval.plot_pareto(d, ms, out, "made-up device")
+            check(os.path.exists(os.path.join(out, f"pareto-{SCENE}.png")), "the Pareto plot is written")
+    finally:
+        plt.Axes.annotate = original
+    for want in ("8: +2.25 dB", "8: +1.12 dB", "32: -0.50 dB"):
+        check(want in labels, f"the plot labels an adaptive point '{want}' (labels: {labels})")
+    # spvg and cv-notex, outside burley's times, keep their plain B: their place on the time axis says it.
+    check(not any("range" in label or label.startswith("4:") for label in labels),
+          f"no gap on a point outside burley's times (labels: {labels})")
+    return finish("eval.run_eval_equal_time")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
