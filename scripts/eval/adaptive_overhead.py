@@ -42,30 +42,27 @@ AS_BUILT_PLANNED = "as built, the burley pass planning each next frame (no sampl
 VARIANTS = [
     ("as built", "both", []),
     ("no reprojection: every history fresh (no previous G-buffer or history reads)", "samples",
-     [(PLANNING, "    if (emcv_adaptive_reproject(p, code, a, b, s, resampled) && !resampled) {",
+     [(PLANNING, "    if (emcv_adaptive_reproject(blk, a, b, s, resampled) && !resampled) {",
        "    s = emcv_adaptive_init();\n    if (false) {")]),
     ("nearest texel: the reprojected history not resampled (the same under a still camera)", "samples",
      [(PLANNING, "    if (t == vec2(0.0f) || s.count < 1u) return true;", "    if (true) return true;")]),
     ("no 3x3 pooling", "samples",
      [(PLANNING, "    for (int dy = -1; dy <= 1; ++dy) {", "    for (int dy = 0; dy < 0; ++dy) {")]),
-    ("budget: the workgroup histogram only (no flush to the frame's, no solve)", "samples",
-     [(BUDGET, "    barrier();  // every pixel of the workgroup is in its histogram\n",
-       "    barrier();  // every pixel of the workgroup is in its histogram\n    return;\n"),
-      (BUDGET, "void emcv_budget_solve(uint thread) {\n", "void emcv_budget_solve(uint thread) {\n    return;\n")]),
-    ("budget: flush, but no solve (its dispatch runs empty)", "samples",
+    ("budget: no solve (its dispatch runs empty)", "samples",
      [(BUDGET, "void emcv_budget_solve(uint thread) {\n", "void emcv_budget_solve(uint thread) {\n    return;\n")]),
-    ("no budget work at all (histogram, flush, solve)", "samples",
-     [(PLANNING, "        emcv_budget_add(sigma2);\n", ""),
-      (SAMPLES, "    if (emcv_history_budget_mode()) emcv_budget_group_clear(here);", ""),
-      (SAMPLES, "    if (emcv_history_budget_mode()) emcv_budget_flush_group(here);", ""),
+    ("no budget work at all (histograms, solve)", "samples",
+     [(PLANNING, "        emcv_budget_add(sigma2, blk.pixels);\n", ""),
+      (PLANNING, "        emcv_budget_add_raw(sigma2, frames, blk.pixels);\n", ""),
       (BUDGET, "void emcv_budget_solve(uint thread) {\n", "void emcv_budget_solve(uint thread) {\n    return;\n")]),
     ("burley pass: every pixel takes B (no divergence; the history update runs)", "burley",
      [(BURLEY, "own = adaptive_count(p);", "own = uint(EMCV_HISTORY_SPP_BUDGET);")]),
-    ("burley pass: no noise test (cv: the push alone, no barrier, no pool)", "burley",
-     [(HISTORY_IO, "#if defined(EMCV_ADAPTIVE_CV)\n    if (gl_LocalInvocationIndex < 3u)",
-       "#if 0\n    if (gl_LocalInvocationIndex < 3u)")]),
+    ("burley pass: no noise test (cv: the push alone, no pool)", "burley",
+     [(HISTORY_IO, "#if defined(EMCV_ADAPTIVE_CV)\n        float term", "#if 0\n        float term"),
+      (HISTORY_IO, "emcv_adaptive_update(texel, s, f, g, batch, emcv_history_noise_ratio(pool));",
+       "emcv_adaptive_update(texel, s, f, g, batch, 1.0f);")]),
     ("burley pass: no history update", "burley",
-     [(BURLEY, "    emcv_adaptive_update_tile(p, pending_scattered, pending_unscattered, pending_albedo, n);\n", "")]),
+     [(BURLEY, "    emcv_adaptive_update_tile(assigned_local, tile_origin, pending_scattered, pending_unscattered, "
+               "pending_albedo, n);\n", "")]),
     (AS_BUILT_PLANNED, "both", []),
 ]
 
@@ -85,20 +82,6 @@ def make_variant(root, edits, source="shaders"):
         with open(path, "w") as f:
             f.write(text.replace(anchor, replacement))
     return root
-
-
-def variant_study_arguments(argv, doc, seeds, block):
-    """The command line shared by the scripts that render variants of the adaptive shaders into a table of
-    docs/renderer.md (stale_allocation.py, notex_change.py): --build, --seeds (a comma list, parsed), --jobs and
-    --write-doc (replace the GENERATED block `block`)."""
-    p = argparse.ArgumentParser(description=doc.split("\n")[0])
-    p.add_argument("--build", default=os.path.join(ROOT, "build"))
-    p.add_argument("--seeds", default=seeds)
-    p.add_argument("--jobs", type=int, default=2)
-    p.add_argument("--write-doc", action="store_true", help=f"replace the {block} block of docs/renderer.md")
-    a = p.parse_args(argv)
-    a.seeds = [int(s) for s in a.seeds.split(",")]
-    return a
 
 
 def run(a, shader_dir, out, plan_ahead=False):

@@ -73,8 +73,18 @@ if [ -n "$python" ]; then
     --first 30 --last "$last" --target-variance 0.0001 --methods spvg,cv,cv-notex,burley-8 --timing gpu \
     --save-raw "$out/cost-quality-gpu" > "$out/cost-quality-gpu.md"
   step cost-quality-gpu
+  # The statistics' grain (EMCV_HISTORY_BLOCK, docs/renderer.md "Block statistics") at equal samples, GPU clock.
+  "$python" scripts/eval/sss_cost.py --build "$build" --runs "$runs" --size "$cost_size" --frames "$frames" \
+    --spp-budget 8 --timing gpu --variant "K1=EMCV_HISTORY_BLOCK=1" --variant "K2=EMCV_HISTORY_BLOCK=2" \
+    --variant "K4=EMCV_HISTORY_BLOCK=4" --save-raw "$out/cost-blocks-gpu" > "$out/cost-blocks-gpu.md"
+  step cost-blocks-gpu
 else
   echo "gpu_runs.sh: no python3, the equal-samples cost tables are skipped" >&2
 fi
+# Equal time: the adaptive methods against burley-N at their own SSS time (the summary's last lines, PSNR
+# interpolated in log time between the burley runs that bracket it), budget 8.
+"$bin/emcv-demo" --scene light-off --method spvg,cv,cv-notex,burley-8,burley-16,burley-32,burley-64 --spp-budget 8 \
+  --size "$cost_size" --frames "$frames" --no-frames --out "$out/equal-time" > "$out/equal-time.txt"
+step equal-time
 if command -v nvidia-smi >/dev/null 2>&1; then nvidia-smi -q -d CLOCK,PERFORMANCE > "$out/clocks.txt" || true; fi
 echo "gpu_runs.sh: wrote $out"

@@ -116,8 +116,10 @@ void main() {
     const float residual_value = emcv_cv_residual(f, alpha, g);
     // cv's noise test over a pool of this pixel alone (the renderer pools over the pixel's 8x8 tile).
     uvec3 noise_pool = uvec3(0u);
-    emcv_history_noise_add(noise_pool, emcv_history_noise_term(cov, f, g, EMCV_HISTORY_ETA_EMCM, float(max(n, 1))),
-                           emcv_history_noise_relative(float(max(n, 1))));
+    // A pixel alone is a block of one (EMCV_HISTORY_BLOCK = 1): its batch is its own n.
+    const float batch = emcv_history_block_batch(uint(max(n, 1)), 1u);
+    emcv_history_noise_add(noise_pool, emcv_history_noise_term(cov, f, g, EMCV_HISTORY_ETA_EMCM, batch),
+                           emcv_history_noise_relative(batch));
     emcv_history_push_cv(cov, f, g, EMCV_HISTORY_ETA_EMCM, float(max(n, 1)));
     emcv_history_rescale_cv(cov, emcv_history_noise_ratio(noise_pool));
     emcv_moving_stats_push_batch(stats, f, EMCV_HISTORY_ETA_MOVING, float(max(n, 1)));

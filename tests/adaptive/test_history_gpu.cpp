@@ -25,6 +25,8 @@
 #include <cstdint>
 #include <cstring>
 #include <map>
+#include <string>
+#include <utility>
 #include <limits>
 #include <vector>
 
@@ -176,13 +178,15 @@ struct harness {
 
     /// The history update that the adaptive burley pass runs after sampling (emcv_adaptive_update), in a probe
     /// fed with the harness's values (scattered, taken) instead of sampled ones; one program per method.
-    std::map<kind, emcv::gl::program> update_probes;
-    emcv::gl::program& update_probe(kind k) {
-        auto it = update_probes.find(k);
+    /// (One program per method and block size: the probe must be built with the history's EMCV_HISTORY_BLOCK.)
+    std::map<std::pair<kind, int>, emcv::gl::program> update_probes;
+    emcv::gl::program& update_probe(kind k, int block) {
+        auto it = update_probes.find({k, block});
         if (it == update_probes.end()) {
             emcv::gl::preprocess_options o = shader_options();
+            o.defines.emplace_back("EMCV_HISTORY_BLOCK", std::to_string(block));
             o.defines.emplace_back(std::string(emcv::demo::row_of(emcv::demo::method{k, 0}).adaptive_define), "1");
-            it = update_probes.emplace(k, emcv::gl::program::compute(
+            it = update_probes.emplace(std::make_pair(k, block), emcv::gl::program::compute(
                 emcv_test::shader_dir() / "adaptive/tests/update_probe.comp.glsl", o)).first;
         }
         return it->second;
@@ -190,7 +194,7 @@ struct harness {
 
     /// One frame of the adaptive passes as the renderer records them: the samples pass (in budget mode followed
     /// by the solve of lambda), then the history update that follows the burley pass's sampling.
-    void frame(history& h, kind k) {
+    void frame(history& h, kind k, int block = 1) {
         glBindBufferBase(GL_UNIFORM_BUFFER, frame_slot, frame_ubo.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, materials_slot, materials.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, stats_slot, stats.id());
@@ -206,7 +210,7 @@ struct harness {
         glBindTextureUnit(tex_prev_normal, prev_normal.id());
         glBindTextureUnit(tex_prev_material, prev_material.id());
         h.record_samples();
-        update_probe(k).use();
+        update_probe(k, block).use();
         h.bind_for_update();
         glBindTextureUnit(tex_sss_in, scattered.id());
         glBindImageTexture(img_count, taken.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
@@ -437,6 +441,113 @@ TEST_CASE("the GPU history equals the C++ estimators fed the same per-pixel valu
         // test's clipped pushes are covered too.
         INFO("cv-notex pushes clipped by the change test: " << notex_clipped);
         if (k == kind::cv_notex) CHECK(notex_clipped > 0);
+    }
+    CHECK(messenger.error_count() == 0);
+}
+
+TEST_CASE("at K = 2 a block's history is its scattering pixels' mean f and G pushed as a batch of n m: the GPU's equals the port's in C++") {
+    // The statistics' grain EMCV_HISTORY_BLOCK = 2: the 16x8 frame is an 8x4 block grid, each 8x8 tile 4x4
+    // blocks. Every pixel of a block takes its block's N (as the burley pass does); pixel (0, 0) does not scatter,
+    // so block (0, 0) has m = 3 pixels and a batch of 3 n. The reference is written here from the port's
+    // functions compiled as C++: the block's means in row order over its scattering pixels that took samples,
+    // the batch n m (emcv_history_block_batch), and for cv the noise test pooled over the blocks of each GPU
+    // tile, then the push and the rescale. fp32 fields must be equal bit for bit (docs/porting.md), binary16
+    // fields within one half ulp (one rounding of the same fp32 value on each side).
+    emcv::gl::context ctx = emcv::test::context_or_skip();
+    emcv::gl::debug_messenger messenger;
+    harness hx;
+    hx.codes[0] = 0;
+    hx.upload_geometry();
+    constexpr int k_block = 2, grid_w = width / k_block, grid_h = height / k_block, tile_blocks = 8 / k_block;
+    constexpr std::size_t blocks = std::size_t(grid_w) * grid_h;
+    emcv::gl::preprocess_options options = shader_options();
+    options.defines.emplace_back("EMCV_HISTORY_BLOCK", "2");
+    for (const kind k : {kind::spvg, kind::cv}) {
+        INFO("method " << (k == kind::spvg ? "spvg" : "cv"));
+        history h(emcv::demo::method{k, 0}, width, height, options, emcv_test::shader_dir());
+        REQUIRE(h.grid_width() == grid_w);
+        REQUIRE(h.grid_height() == grid_h);
+        std::vector<texel> previous(blocks);  // fresh: all zero
+        std::vector<float> g, f;
+        int pushed = 0, three_pixel_pushes = 0, rescaled_tiles = 0;
+        for (int frame = 0; frame < 12; ++frame) {
+            light_at(frame, g, f);
+            hx.set_light(g, f);
+            std::vector<std::uint32_t> taken(pixels), block_n(blocks);
+            for (std::size_t b = 0; b < blocks; ++b) block_n[b] = taken_at(b, frame);
+            for (int y = 0; y < height; ++y)
+                for (int x = 0; x < width; ++x)
+                    taken[std::size_t(y * width + x)] = block_n[std::size_t((y / k_block) * grid_w + x / k_block)];
+            hx.set_taken(taken);
+            const std::vector<float> gt = hx.tracked(g), ft = hx.tracked(f);
+            hx.frame(h, k, k_block);
+            const std::vector<texel> now = h.read();
+            REQUIRE(now.size() == blocks);
+            // Each block's means and batch, then (cv) each GPU tile's noise pool over its blocks.
+            std::vector<float> mean_f(blocks, 0.0f), mean_g(blocks, 0.0f), batch(blocks, 0.0f);
+            for (int by = 0; by < grid_h; ++by) {
+                for (int bx = 0; bx < grid_w; ++bx) {
+                    const std::size_t b = std::size_t(by * grid_w + bx);
+                    float sum_f = 0.0f, sum_g = 0.0f;
+                    std::uint32_t m = 0;
+                    for (int dy = 0; dy < k_block; ++dy)
+                        for (int dx = 0; dx < k_block; ++dx) {
+                            const std::size_t i = std::size_t((by * k_block + dy) * width + bx * k_block + dx);
+                            if (hx.codes[i] == 0 || taken[i] == 0) continue;
+                            sum_f += ft[i];
+                            sum_g += gt[i];
+                            ++m;
+                        }
+                    if (m == 0) continue;
+                    mean_f[b] = sum_f / float(m);
+                    mean_g[b] = sum_g / float(m);
+                    batch[b] = emcv::port::emcv_history_block_batch(block_n[b], m);
+                    if (m == 3) ++three_pixel_pushes;
+                }
+            }
+            std::vector<glm::uvec3> pool(2, glm::uvec3(0u));
+            std::vector<emcv::port::EmcvEmcm2> cv_state(blocks);
+            if (k == kind::cv) {
+                for (std::size_t b = 0; b < blocks; ++b) {
+                    REQUIRE(emcv::port::emcv_history_decode_emcm2(previous[b].a, previous[b].b, cv_state[b]));
+                    const float term = batch[b] > 0.0f ? emcv::port::emcv_history_noise_term(cv_state[b], mean_f[b], mean_g[b],
+                                                                                               EMCV_HISTORY_ETA_EMCM, batch[b])
+                                                       : emcv::port::emcv_history_no_variance();
+                    emcv::port::emcv_history_noise_add(pool[(b % std::size_t(grid_w)) / std::size_t(tile_blocks)], term,
+                                                       emcv::port::emcv_history_noise_relative(std::max(batch[b], 1.0f)));
+                }
+                for (const glm::uvec3& t : pool) rescaled_tiles += emcv::port::emcv_history_noise_ratio(t) < 1.0f ? 1 : 0;
+            }
+            for (std::size_t b = 0; b < blocks; ++b) {
+                INFO("frame " << frame << " block " << b << " batch " << batch[b]);
+                if (batch[b] > 0.0f) ++pushed;
+                if (k == kind::cv) {
+                    emcv::port::EmcvEmcm2 s = cv_state[b];
+                    if (batch[b] > 0.0f) {
+                        emcv::port::emcv_history_push_cv(s, mean_f[b], mean_g[b], EMCV_HISTORY_ETA_EMCM, batch[b]);
+                        emcv::port::emcv_history_rescale_cv(
+                            s, emcv::port::emcv_history_noise_ratio(pool[(b % std::size_t(grid_w)) / std::size_t(tile_blocks)]));
+                    }
+                    CHECK(bits(now[b].a.x) == bits(s.cov.x));
+                    CHECK(bits(now[b].a.y) == bits(s.cov.y));
+                    CHECK(bits(now[b].a.z) == bits(s.cov.z));
+                    CHECK(now[b].a.w == float(s.count));
+                    CHECK(bits(now[b].b.x) == bits(s.mean.x));
+                    CHECK(bits(now[b].b.y) == bits(s.mean.y));
+                } else {
+                    emcv::port::EmcvMovingStats s;
+                    REQUIRE(emcv::port::emcv_history_decode_stats(previous[b].a, s));
+                    if (batch[b] > 0.0f) emcv::port::emcv_moving_stats_push_batch(s, mean_f[b], EMCV_HISTORY_ETA_MOVING, batch[b]);
+                    CHECK(half_ulps(now[b].a.x, half(s.mean)) <= 1);
+                    CHECK(half_ulps(now[b].a.y, half(s.variance / emcv::port::emcv_history_variance_unit())) <= 1);
+                    CHECK(now[b].a.z == float(s.count));
+                }
+            }
+            previous = now;
+        }
+        CHECK(pushed > 200);                 // most of 12 frames x 32 blocks took samples (taken_at is 0 one frame in 7)
+        CHECK(three_pixel_pushes >= 10);     // block (0, 0), whose pixel (0, 0) does not scatter, took part
+        if (k == kind::cv) CHECK(rescaled_tiles > 0);  // the switch at frame 6: the noise test acted on a tile
     }
     CHECK(messenger.error_count() == 0);
 }

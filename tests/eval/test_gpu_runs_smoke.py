@@ -22,7 +22,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 RUNS = os.path.join(ROOT, "scripts", "eval", "gpu_runs.sh")
 REPORT = os.path.join(ROOT, "scripts", "eval", "gpu_report.py")
 COST = ["cost-budget8-gpu", "cost-budget8-wall", "cost-budget16-gpu", "cost-budget16-wall", "cost-quality-gpu"]
-STEPS = ["teaser-48x48", "scaling"] + COST
+STEPS = ["teaser-48x48", "scaling"] + COST + ["cost-blocks-gpu", "equal-time"]
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from script_checks import check, finish, no_gl  # noqa: E402
 
@@ -50,6 +50,8 @@ def main(build):
         expected = ["commit.txt", "glinfo.txt", "demo-48x48/metrics.csv", "eval-48x48-run1.csv", "scaling-32x32.csv",
                     "scaling-48x48.csv", "steps.txt"]
         expected += [f"{c}/{f}" for c in COST for f in ("settings.json", "build-run1.csv")] + [f"{c}.md" for c in COST]
+        expected += ["cost-blocks-gpu.md", "cost-blocks-gpu/settings.json", "cost-blocks-gpu/K2-run1.csv",
+                     "equal-time.txt", "equal-time/metrics.csv"]
         for f in expected:
             path = os.path.join(out, f)
             check(os.path.isfile(path) and os.path.getsize(path) > 0, f"gpu_runs.sh --smoke writes {f}")

@@ -150,6 +150,14 @@ TEST_CASE("define values are validated and written as GLSL literals of the tunab
     CHECK_FALSE(sampling_mode_of(defines).budget);
     add_define(defines, "EMCV_HISTORY_N_MIN=20");
     CHECK_THROWS_WITH(check_tunables(defines), ContainsSubstring("EMCV_HISTORY_N_MIN (20) exceeds EMCV_HISTORY_N_MAX (16)"));
+    {  // the statistics' grain divides the 8x8 tile: 3 is in the tunable's range [1, 4] but refused
+        std::vector<std::pair<std::string, std::string>> block;
+        add_define(block, "EMCV_HISTORY_BLOCK=4");
+        CHECK_NOTHROW(check_tunables(block));
+        add_define(block, "EMCV_HISTORY_BLOCK=3");
+        CHECK_THROWS_WITH(check_tunables(block), ContainsSubstring("EMCV_HISTORY_BLOCK (3) is not 1, 2 or 4"));
+        fails("EMCV_HISTORY_BLOCK=8", "an integer in [1, 4]");
+    }
     std::string seen;
     add_sampling_flag(defines, "--spp-budget", "12", seen);
     CHECK(sampling_mode_of(defines).budget);

@@ -1,0 +1,75 @@
+#!/usr/bin/python3
+# SPDX-License-Identifier: MIT
+"""What the statistics' grain (EMCV_HISTORY_BLOCK = K, docs/renderer.md "Block statistics") costs in quality at
+equal samples: cv at a budget of B beside burley-B, for K = 1, 2 and 4, per scene; PSNR of the raw and the
+resolved display image against the converged reference, mean over frames FIRST.. (emcv-demo's metrics.json), and
+the mean samples per SSS pixel. Prints one markdown table (rows: scene; columns: burley-B and cv at each K, raw /
+resolved, and cv's loss against K = 1).
+
+Usage: /usr/bin/python3 scripts/eval/block_size.py [--build build] [--size 128x128] [--spp-budget 8] [--first 2]
+           [--jobs 2] [--method cv] SCENE...
+(SCENE: a built-in name or a scene file; the scene's own length.)
+"""
+import argparse
+import concurrent.futures
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+
+BLOCKS = (1, 2, 4)
+
+
+def run(a, scene, block):
+    """One emcv-demo run of `a.method` and burley-B at block size `block`: {method: (raw dB, resolved dB, spp)}."""
+    with tempfile.TemporaryDirectory() as out:
+        cmd = [os.path.join(a.build, "bin", "emcv-demo"), "--scene", scene, "--size", a.size, "--method",
+               f"{a.method},burley-{a.spp_budget:g}", "--spp-budget", f"{a.spp_budget:g}", "--no-frames", "--out", out,
+               "--define", f"EMCV_HISTORY_BLOCK={block}"]
+        subprocess.run(cmd, check=True, capture_output=True, text=True)
+        with open(os.path.join(out, "metrics.json")) as f:
+            rows = json.load(f)["rows"]
+    per = {}
+    for r in rows:
+        if r["frame"] >= a.first and r["method"] != "reference":
+            per.setdefault(r["method"], []).append((r["psnr_db"], r["psnr_resolved_db"], r["mean_spp"]))
+    # A frame with no error (an image equal to the reference's: no SSS pixel on screen) has no PSNR (null).
+    return {m: tuple(statistics.fmean(x) if (x := [v[i] for v in vals if v[i] is not None]) else float("nan")
+                     for i in range(3)) for m, vals in per.items()}
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("scenes", nargs="+")
+    p.add_argument("--build", default="build")
+    p.add_argument("--size", default="128x128")
+    p.add_argument("--spp-budget", type=float, default=8.0)
+    p.add_argument("--first", type=int, default=2)
+    p.add_argument("--jobs", type=int, default=2)
+    p.add_argument("--method", default="cv")
+    a = p.parse_args()
+    if not os.path.isfile(os.path.join(a.build, "bin", "emcv-demo")):
+        sys.exit(f"block_size.py: no emcv-demo under {a.build}/bin")
+    with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
+        futures = {(s, k): pool.submit(run, a, s, k) for s in a.scenes for k in BLOCKS}
+        results = {key: f.result() for key, f in futures.items()}
+    base = f"burley-{a.spp_budget:g}"
+    print(f"{a.method} at a budget of {a.spp_budget:g} beside {base}, {a.size}, frames {a.first} to the scene's last, "
+          f"PSNR dB raw / resolved (mean over frames); loss = K = 1's PSNR minus K's\n")
+    head = f"| scene | {base} | " + " | ".join(f"K = {k}" for k in BLOCKS) + " | loss K = 2 | loss K = 4 | spp (K = 1, 2, 4) |"
+    print(head)
+    print("|" + "---|" * (head.count("|") - 1))
+    for s in a.scenes:
+        r = {k: results[(s, k)] for k in BLOCKS}
+        b = r[1][base]
+        cells = [f"{r[k][a.method][0]:.2f} / {r[k][a.method][1]:.2f}" for k in BLOCKS]
+        loss = [f"{r[1][a.method][0] - r[k][a.method][0]:+.2f} / {r[1][a.method][1] - r[k][a.method][1]:+.2f}" for k in (2, 4)]
+        spp = ", ".join(f"{r[k][a.method][2]:.2f}" for k in BLOCKS)
+        print(f"| {os.path.splitext(os.path.basename(s))[0]} | {b[0]:.2f} / {b[1]:.2f} | " + " | ".join(cells) + " | "
+              + " | ".join(loss) + f" | {spp} |")
+
+
+if __name__ == "__main__":
+    main()
