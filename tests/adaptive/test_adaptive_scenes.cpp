@@ -13,6 +13,12 @@
 //                 the 30 frames after the switch, and spends B within 2% in every frame
 //   built-ins     budget mode on the built-in static and light-off: cv above burley-B over frames 2-59, at every block
 //                 size K = 1, 2, 4 (EMCV_HISTORY_BLOCK)
+//   fractional B  budget mode at B = 2.5 on the built-in static (the issue "Cheap at equal time"): in every frame
+//                 each count is its share rounded down or up, the counts sum to the shares within the stochastic
+//                 rounding's 5 sd and round up as often as the shares' fractions say (by quarter of [0, 1)), and
+//                 the frame's mean count per SSS pixel (the metric) lies within the solve's bound plus that. Plain
+//                 rounding spends 3.00 in frames 0 and 1 (every share is B) and fails the quarters from frame 2
+//                 on, where the fractions spread evenly and keep its mean near B
 //   far           the built-in `far` scene (every kernel under a pixel): cv and cv-notex take 0 samples
 // PSNR as emcv-demo reports it: display images (tonemapped, sRGB) against the reference's, per frame, averaged.
 // The switch uses a sphere built in code rather than the built-in light-off, so that its bounds do not follow the
@@ -22,12 +28,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
 #include "../gpu/gl_test_support.hpp"
 #include "../render/render_test_support.hpp"
+#include "../support/budget_bounds.hpp"
 #include "gl/debug.hpp"
+#include "render/adaptive/history.hpp"
 #include "render/renderer.hpp"
 #include "render/tunables.hpp"
 #include "scene/load.hpp"
@@ -74,6 +83,12 @@ double psnr(const emcv::gl::float_image& a, const emcv::gl::float_image& b) {
         ++n;
     }
     return se > 0.0 ? 10.0 * std::log10(double(n) / se) : 200.0;
+}
+
+std::uint32_t bits(float x) {
+    std::uint32_t b;
+    std::memcpy(&b, &x, sizeof b);
+    return b;
 }
 
 double mean_over(const std::vector<double>& v, int first, int last) {
@@ -217,6 +232,77 @@ TEST_CASE("budget mode on the built-in static and light-off: cv beats burley-B a
                 CHECK(std::fabs(cv.mean_spp[std::size_t(f)] - 8.0) <= 0.08 + 5.0 * rounding);
             }
         }
+    }
+    CHECK(messenger.error_count() == 0);
+}
+
+TEST_CASE("budget mode at a fractional B: each frame spends B = 2.5 per SSS pixel, each count its share rounded") {
+    emcv::gl::context ctx = emcv::test::context_or_skip();
+    emcv::gl::debug_messenger messenger;
+    constexpr double budget = 2.5;
+    constexpr int frames = 8;
+    emcv::sampling_params p;  // the renderer's tunables: n_min, n_max as the port's defaults
+    p.mode = emcv::sampling_mode::budget;
+    p.budget = float(budget);
+    render_options o;
+    o.width = test_width;
+    o.height = test_height;
+    o.seed = 7;
+    add_define(o.defines, "EMCV_HISTORY_SPP_BUDGET=" + std::to_string(budget));
+    renderer r(load_scene_argument("static"), *parse_method("cv"), o);
+    REQUIRE(r.adaptive_history() != nullptr);
+    const std::size_t pixels = std::size_t(test_width) * test_height;
+    // Frame 0's histories are fresh: every SSS pixel has no variance and takes B itself.
+    std::vector<std::uint32_t> codes(pixels, bits(emcv::port::emcv_history_no_variance()));
+    float lambda = 0.0f;
+    for (int f = 0; f < frames; ++f) {
+        // With the camera and the scene still, each frame from frame 1 on is planned by the one before (its burley
+        // pass leaves the variance codes in the samples image and lambda in the budget block, docs/renderer.md
+        // "Planning the next frame"): read them before this frame takes its counts from them. Frames 0 and 1 have
+        // no variance yet (every share is B: plain rounding spent 3.00 there), the solve spends from frame 2 on.
+        if (f > 0) {
+            glGetTextureImage(r.adaptive_history()->samples_texture(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                              GLsizei(codes.size() * sizeof(std::uint32_t)), codes.data());
+            lambda = r.adaptive_history()->read_budget().lambda;
+        }
+        const frame_stats& st = r.render(f);
+        INFO("frame " << f);
+        const emcv::gl::float_image counts = r.sample_counts(), mask = r.sss_mask();
+        emcv_test::rounding_sums sums;
+        emcv::budget_histogram h = emcv::make_budget_histogram();
+        std::size_t sss = 0;
+        for (std::size_t i = 0; i < pixels; ++i) {
+            if (mask.pixels[i] <= 0.5f) continue;
+            float sigma2;
+            std::memcpy(&sigma2, &codes[i], sizeof sigma2);
+            emcv::budget_add(h, sigma2);
+            sums.add(emcv_test::budget_share_of(sigma2, lambda, p), int(counts.pixels[i]));
+            ++sss;
+        }
+        // The solve plans B (histogram + zero pixels) for the histogram's pixels; the pixels without a variance take
+        // B each outside it, the zero pixels 0: the shares sum to B per SSS pixel up to the solve's bound.
+        std::size_t histogram_pixels = 0;
+        for (std::uint32_t b = 0; b < EMCV_BUDGET_BINS; ++b) histogram_pixels += h.bin_count[b];
+        REQUIRE(histogram_pixels + h.zero_pixels + h.default_pixels == sss);
+        const double solve =
+            emcv_test::budget_solve_bound(h, lambda, p, budget * double(histogram_pixels + h.zero_pixels));
+        INFO(sss << " SSS pixels (" << h.default_pixels << " without a variance), mean count " << st.mean_spp
+                 << "; sum of shares " << sums.shares << " against B P " << budget * double(sss) << " (solve's bound "
+                 << solve << "), of counts " << sums.counts << " (rounding's bound " << sums.bound() << ")");
+        REQUIRE(st.sss_pixels == sss);  // the metric's pixels are the mask's
+        CHECK(st.mean_spp == sums.counts / double(sss));
+        CHECK(sums.off == 0);  // every count is its share's floor or the next: the codes read are this frame's
+        CHECK(sums.variance > 0.05 * double(sss));  // fractional shares: the rounding is exercised
+        CHECK(std::fabs(sums.shares - budget * double(sss)) <= solve);
+        CHECK(std::fabs(sums.counts - sums.shares) <= sums.bound());
+        for (int q = 0; q < 4; ++q) {
+            INFO("fractions in [" << q / 4.0 << ", " << (q + 1) / 4.0 << "): rounded up " << sums.quarter_up[q]
+                                  << ", expected " << sums.quarter_fraction[q] << " (bound " << sums.quarter_bound(q)
+                                  << ")");
+            CHECK(std::fabs(sums.quarter_up[q] - sums.quarter_fraction[q]) <= sums.quarter_bound(q));
+        }
+        // the metric: samples per SSS pixel within the solve's and the rounding's bounds of B
+        CHECK(std::fabs(st.mean_spp - budget) <= (solve + sums.bound()) / double(sss));
     }
     CHECK(messenger.error_count() == 0);
 }
