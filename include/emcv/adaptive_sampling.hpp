@@ -63,7 +63,8 @@ enum class sampling_mode {
     budget           ///< a mean of `budget` samples per pixel, N proportional to sigma (least mean squared error)
 };
 
-/// The eta the renderer uses for an estimator: EMCV_HISTORY_ETA_EMCM (the paper's 0.05) for cv,
+/// The eta the renderer uses for an estimator: EMCV_HISTORY_ETA_EMCM (0.2, SPVG's rather than the paper's 0.05:
+/// docs/renderer.md, "The memory") for cv,
 /// EMCV_HISTORY_ETA_MOVING (SPVG's 0.2) for spvg and cv-notex.
 inline float sampling_default_eta(sampling_estimator e) noexcept {
     return e == sampling_estimator::cv ? EMCV_HISTORY_ETA_EMCM : EMCV_HISTORY_ETA_MOVING;
