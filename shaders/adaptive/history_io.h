@@ -36,7 +36,7 @@ layout(r32ui, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_SAMPLES)) uniform uima
 #define EMCV_ADAPTIVE_TILE_BLOCKS (EMCV_ADAPTIVE_TILE_BLOCKS_SIDE * EMCV_ADAPTIVE_TILE_BLOCKS_SIDE)
 /// Whether this invocation holds one of the tile's blocks: invocation j holds block j (the first TILE_BLOCKS
 /// invocations, which lie in the first SIMD batches: an implementation that runs a workgroup in batches, as
-/// llvmpipe does, skips a batch in which no lane takes the `if`, where a loop would run its body once masked).
+/// llvmpipe does, or in warps, skips a batch in which no lane takes the `if`).
 bool emcv_adaptive_holds_block() { return gl_LocalInvocationIndex < uint(EMCV_ADAPTIVE_TILE_BLOCKS); }
 
 /// One block of a tile as its pixels left it in shared memory (emcv_adaptive_block).
@@ -73,11 +73,8 @@ ivec2 emcv_adaptive_grid() {
     return (ivec2(frame.viewport.xy) + (EMCV_HISTORY_BLOCK - 1)) / EMCV_HISTORY_BLOCK;
 }
 
-/// Whether t is a texel of the block grid.
+/// Whether t is a texel of the block grid (at K = 1, emcv_render_on_screen).
 bool emcv_adaptive_on_grid(ivec2 t) { return all(greaterThanEqual(t, ivec2(0))) && all(lessThan(t, emcv_adaptive_grid())); }
-
-/// Whether t is a texel of the block grid (emcv_adaptive_on_grid; at K = 1, emcv_render_on_screen).
-bool emcv_adaptive_on_screen(ivec2 t) { return emcv_adaptive_on_grid(t); }
 
 /// No block (an invocation that holds none).
 EmcvAdaptiveBlock emcv_adaptive_no_block() { return EmcvAdaptiveBlock(ivec2(-1), ivec2(-1), 0u, 0u, false); }

@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: MIT
 // shaders/adaptive/samples.h — what decides an adaptive method's N at an SSS pixel, for the two programs that
-// plan counts (the renderer defines the method's EMCV_ADAPTIVE_* from its row of the method table): each SSS pixel
-// fetches last frame's history at its reprojected position (motion vectors; the texel there decides, its
-// statistics resampled bilinearly over the texels of the same surface), keeps it only when the position is on
-// screen and the surface is the same (material, depth, normal: emcv_history_reusable) and the texel is not
-// poisoned, writes that state (or a fresh one) into this frame's history, and shares its per-sample variance with
-// its tile, where it is pooled over its 3x3 neighbours of the same material (emcv_adaptive_tile_sigma2).
+// plan counts (the renderer defines the method's EMCV_ADAPTIVE_* from its row of the method table): each block of
+// K x K pixels (EMCV_HISTORY_BLOCK; a pixel at K = 1) fetches last frame's history at its reprojected position
+// (motion vectors; the texel there decides, its statistics resampled bilinearly over the texels of the same
+// surface), keeps it only when the position is on screen and the surface is the same (material, depth, normal:
+// emcv_history_reusable) and the texel is not poisoned, writes that state (or a fresh one) into this frame's
+// history, and shares its per-sample variance with its tile, where it is pooled over its 3x3 neighbouring blocks
+// of the same material (emcv_adaptive_tile_sigma2).
 //   adaptive/samples.comp.glsl  budget mode: the samples pass before the burley pass (the frame's histogram and
 //                               its solve need every pixel's variance before any pixel's N)
 //   render/sss_burley.comp.glsl quality target: at the top of the method's burley program, which then samples
@@ -130,7 +131,7 @@ float emcv_adaptive_own_sigma2(EmcvAdaptiveBlock blk, out float frames) {
     frames = 0.0f;
     if (blk.code == 0u) {
         // the burley pass skips these pixels before any count
-        if (emcv_adaptive_on_screen(blk.texel)) emcv_adaptive_store(blk.texel, emcv_adaptive_init());
+        if (emcv_adaptive_on_grid(blk.texel)) emcv_adaptive_store(blk.texel, emcv_adaptive_init());
         return emcv_history_no_samples();
     }
     vec4 a, b;

@@ -103,8 +103,8 @@ uint adaptive_count(ivec2 p) {
 /// SIMD batches) holds pixels of like N, and the pixels that take none come first. A counting sort over SORT_KEYS
 /// keys (N scaled monotonically onto them: EMCV_HISTORY_N_MAX may exceed them), the order within a key as the
 /// atomics fall: what a pixel's samples and history update compute does not depend on the thread that runs them,
-/// so the image is the same bit for bit. The history this pass planned for a pixel is loaded by whichever thread
-/// takes it: the images are coherent (adaptive/history_io.h) and the barriers here follow memoryBarrierImage.
+/// so the image is the same bit for bit. A block's history is planned, updated and read back by the invocation
+/// that holds the block (emcv_adaptive_holds_block), whichever pixels the sort hands out.
 /// Every invocation calls it, in uniform control flow.
 void sort_tile_by_count(inout ivec2 p) {
     uint here = gl_LocalInvocationIndex;
@@ -112,7 +112,6 @@ void sort_tile_by_count(inout ivec2 p) {
     if (emcv_render_on_screen(p) && emcv_render_scatters(emcv_render_material_code(p))) own = adaptive_count(p);
     sort_offset[here] = 0u;
     sort_count[here] = own;
-    memoryBarrierImage();  // the history planned for p (quality target), loaded by the thread that takes p
     barrier();
     uint key = min(uint(float(own) * (float(SORT_KEYS - 1) / float(EMCV_HISTORY_N_MAX)) + 0.5f), uint(SORT_KEYS - 1));
     atomicAdd(sort_offset[key], 1u);

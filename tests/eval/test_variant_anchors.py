@@ -2,7 +2,7 @@
 """Every shader edit of the study scripts in scripts/eval still finds its anchor, once, in this tree.
 
 The scripts that measure a cut-out piece of a pass (adaptive_overhead.py's rows, the plain variants of
-notex_change.py, resolve_motion.py, ...) render a copy of shaders/ (or include/) with a text replacement
+resolve_motion.py, ...) render a copy of shaders/ (or include/) with a text replacement
 (adaptive_overhead.make_variant), which refuses an anchor that is gone. A refactor of a shader can remove an
 anchor without any test noticing until someone reruns the study. This walks every module-level value of those
 scripts for edits, (file, anchor, replacement) with a .glsl or .h file, and checks each anchor occurs exactly once
