@@ -39,6 +39,12 @@
 #endif
 
 #ifdef __cplusplus
+// The C++ side is written in GLM's GLSL-like types: without GLM, stop here and say so (not "not a member" later).
+#if defined(__has_include)
+#if !__has_include(<glm/glm.hpp>)
+#error "emcv: <emcv/port/*.h> and <emcv/adaptive_sampling.hpp> need GLM, and <glm/glm.hpp> is not on the include path: install GLM (Debian: libglm-dev) and link emcv::port (find_package(emcv COMPONENTS port))"
+#endif
+#endif
 #include <cmath>
 #include <glm/glm.hpp>
 #if EMCV_PORT_CHECKS
