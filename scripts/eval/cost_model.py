@@ -42,6 +42,26 @@ PIXEL = {
     "planned ahead (cv, still view)": {"bytes": 24 + 4, "sfu": 2 + 14},
 }
 
+# The same adaptive rows split by grain, for block statistics (EMCV_HISTORY_BLOCK = K, docs/renderer.md "Block
+# statistics"): what each SSS pixel still pays, and what each K x K block pays once (the history texels, the
+# reprojection's previous G-buffer at the block's representative, the variance's arithmetic). Per pixel the samples
+# pass reads the material code and the sub-pixel test's material block and albedo (25 B); the update reads the
+# block's count or variance (4, from the caches after the first pixel; counted) and its own estimate back (8), and
+# takes the gamma luminance of f and G (4 SFU). At K = 1 each row adds up to its PIXEL row above.
+SPLIT = {
+    "adaptive samples (cv)": {"pixel": {"bytes": 1 + 16 + 8, "sfu": 0},
+                              "block": {"bytes": 4 + 8 + 4 + 8 + 24 + 24 + 4, "sfu": 20}},
+    "adaptive update (cv)": {"pixel": {"bytes": 4 + 8, "sfu": 4},
+                             "block": {"bytes": 24 + 24, "sfu": 5}},
+    "planned ahead (cv, still view)": {"pixel": {"bytes": 0, "sfu": 0},
+                                       "block": {"bytes": 24 + 4, "sfu": 16}},
+}
+
+# The H100 runs of docs/results/gpu (light-off, 1920x1080, glFinish-timed, before the passes were fused:
+# demo-1920x1080.txt, means over frames 1-59): burley-16's and cv's SSS time over the same SSS pixels, to which the
+# projection below fits one factor for the samples' floors and one for the history's.
+H100_RUN = {"sss_pixels": 344365, "burley_spp": 16, "burley_ms": 1.339, "cv_spp": 11.7, "cv_ms": 1.554}
+
 DEVICES = {
     # H100 SXM5 (the repo's GPU tables): HBM3 3.35 TB/s, L2 about 10 TB/s, 132 SMs x 16 SFU lanes at 1.98 GHz.
     "h100": {"name": "NVIDIA H100 SXM5", "dram": 3.35e12, "l2": 10e12, "sfu": 132 * 16 * 1.98e9},
@@ -55,6 +75,7 @@ def main():
     p.add_argument("--size", default="1920x1080")
     p.add_argument("--budget", type=int, default=8)
     p.add_argument("--device", default="h100", choices=sorted(DEVICES))
+    p.add_argument("--blocks", default="", help="comma-separated K (1, 2, 4): add the per-K table and its projection")
     a = p.parse_args()
     w, h = (int(x) for x in a.size.split("x"))
     pixels = w * h
@@ -79,6 +100,63 @@ def main():
     print(f"cv's per-pixel history work reads and writes {adaptive} B a pixel, as many bytes as "
           f"{adaptive / SAMPLE['bytes']:.0f} samples' fetches; where the view holds and the burley pass plans the "
           f"next frame, {still} B ({still / SAMPLE['bytes']:.0f} samples' fetches), in one dispatch instead of two.")
+
+    if a.blocks:
+        blocks_table(a, pixels, dev)
+
+
+def floor_us(pixels, c, dev, per_sample=False):
+    """The larger of a count's two floors, in microseconds over `pixels` (samples' bytes at L2, the rest at DRAM)."""
+    return pixels * max(c["bytes"] / (dev["l2"] if per_sample else dev["dram"]), c["sfu"] / dev["sfu"]) * 1e6
+
+
+def blocks_table(a, pixels, dev):
+    """cv's history work per SSS pixel at each K, its floors, and a projection scaled by the H100's burley-16."""
+    def at(k, rows):
+        out = {"bytes": 0.0, "sfu": 0.0}
+        for name in rows:
+            for key in out:
+                out[key] += SPLIT[name]["pixel"][key] + SPLIT[name]["block"][key] / (k * k)
+        return out
+
+    def burley(n):
+        return {"bytes": SAMPLE["bytes"] * n, "sfu": SAMPLE["sfu"] * n}, PIXEL["burley"]
+
+    def burley_floor(n, px):
+        samples, per_pixel = burley(n)
+        return floor_us(px, samples, dev, per_sample=True) + floor_us(px, per_pixel, dev)
+
+    moving = ["adaptive samples (cv)", "adaptive update (cv)"]
+    still = ["adaptive update (cv)", "planned ahead (cv, still view)"]
+    # The projection: t = s_samples x (burley's floors) + s_history x (the history's floors), s_samples from
+    # burley-16's measured time, s_history from cv's (its samples priced as burley's, its history work at K = 1 on
+    # a moving view: the counts of the fused passes, which the run predates). Two measurements, two factors: a fit
+    # that is exact on them, not a test of the model.
+    run = H100_RUN
+    s_samples = run["burley_ms"] * 1e3 / burley_floor(run["burley_spp"], run["sss_pixels"])
+    cv_samples_us = s_samples * burley_floor(run["cv_spp"], run["sss_pixels"])
+    s_history = (run["cv_ms"] * 1e3 - cv_samples_us) / floor_us(run["sss_pixels"], at(1, moving), dev)
+    print()
+    print(f"cv's history work by the statistics' grain K, {a.size}, every pixel scattering. Floors as above; "
+          f"'projected' prices burley's floors at {s_samples:.1f}x and the history's at {s_history:.1f}x, the factors "
+          f"that the H100 run of docs/results/gpu gives (light-off 1920x1080, burley-16 {run['burley_ms']} ms and cv "
+          f"{run['cv_ms']} ms at {run['cv_spp']} spp on {run['sss_pixels']} SSS pixels, glFinish-timed, before the "
+          f"passes were fused). A projection, not a measurement.")
+    print()
+    print(f"| K | moving view: B / pixel | floor (us) | projected (us) | still view: B / pixel | floor (us) | "
+          f"projected (us) | projected / burley-{a.budget}'s, moving (still) |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|")
+    base = burley_floor(a.budget, pixels) * s_samples
+    for k in (int(x) for x in a.blocks.split(",")):
+        if k not in (1, 2, 4):
+            raise SystemExit(f"cost_model.py: --blocks takes 1, 2 and 4, got {k}")
+        m, st = at(k, moving), at(k, still)
+        fm, fs = floor_us(pixels, m, dev), floor_us(pixels, st, dev)
+        print(f"| {k} | {m['bytes']:.0f} | {fm:.1f} | {fm * s_history:.0f} | {st['bytes']:.0f} | {fs:.1f} | "
+              f"{fs * s_history:.0f} | {fm * s_history / base:.2f} ({fs * s_history / base:.2f}) |")
+    for n in (a.budget, 16):
+        f = burley_floor(n, pixels)
+        print(f"| burley-{n}'s SSS pass | | {f:.1f} | {f * s_samples:.0f} | | | | {f * s_samples / base:.2f} |")
 
 
 if __name__ == "__main__":

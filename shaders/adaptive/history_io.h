@@ -35,8 +35,9 @@ layout(r32ui, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_SAMPLES)) uniform uima
 #define EMCV_ADAPTIVE_TILE_BLOCKS_SIDE (EMCV_RENDER_TILE_SIZE / EMCV_HISTORY_BLOCK)
 #define EMCV_ADAPTIVE_TILE_BLOCKS (EMCV_ADAPTIVE_TILE_BLOCKS_SIDE * EMCV_ADAPTIVE_TILE_BLOCKS_SIDE)
 /// Whether this invocation holds one of the tile's blocks: invocation j holds block j (the first TILE_BLOCKS
-/// invocations, which lie in the first SIMD batches: an implementation that runs a workgroup in batches, as
-/// llvmpipe does, or in warps, skips a batch in which no lane takes the `if`).
+/// invocations, which lie in the first warps: a GPU skips a warp in which no lane takes the `if`; llvmpipe runs
+/// the `if` masked in every 8-lane batch, so there the blocks' arithmetic costs as much at any K:
+/// docs/notebook/2026-12-07-block-work-on-llvmpipe.md).
 bool emcv_adaptive_holds_block() { return gl_LocalInvocationIndex < uint(EMCV_ADAPTIVE_TILE_BLOCKS); }
 
 /// One block of a tile as its pixels left it in shared memory (emcv_adaptive_block).
