@@ -140,8 +140,10 @@ int main(int argc, char** argv) {
                                                 (o.resolve == resolve_mode::taa
                                                      ? " (resolved-*.png but the reference's; "
                                                      : " (") +
-                                                "spvg, cv, cv-notex: samples-*.png, " +
-                                                heatmap_scale_text(samples_heatmap_scale) + "; cv: alpha-*.png, " +
+                                                method_names_where(&method_row::samples_heatmap) +
+                                                ": samples-*.png, " + heatmap_scale_text(samples_heatmap_scale) +
+                                                "; " + method_names_where(&method_row::alpha_heatmap) +
+                                                ": alpha-*.png, " +
                                                 heatmap_scale_text(alpha_heatmap_scale) + ")\n");
             if (result.heatmap_text_missing)
                 std::cerr << "emcv-demo: the heatmaps' legends have no text: font " << heatmap_font

@@ -111,6 +111,13 @@ std::string accepted_method_names() {
     return out;
 }
 
+std::string method_names_where(bool method_row::*flag) {
+    std::string out;
+    for (const method_row& r : method_table())
+        if (r.*flag) out += (out.empty() ? "" : ", ") + std::string(r.name);
+    return out;
+}
+
 std::string method_help_lines(std::size_t indent) {
     std::size_t width = 0;
     for (const method_row& r : method_table()) width = std::max(width, spelled(r).size());

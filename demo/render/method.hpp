@@ -97,6 +97,10 @@ method make_reference(int samples);
 /// "diffuse, burley-N (N = 1..1024), ...": the accepted names, for error messages.
 std::string accepted_method_names();
 
+/// The names of the rows whose `flag` (a bool member of method_row) is set, in table order, joined by ", "
+/// ("spvg, cv, cv-notex" for &method_row::samples_heatmap): the text that names them in output.
+std::string method_names_where(bool method_row::*flag);
+
 /// One line per row: "  name  help", the text of --help's method list and of --list-methods.
 std::string method_help_lines(std::size_t indent);
 

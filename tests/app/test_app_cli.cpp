@@ -564,6 +564,19 @@ TEST_CASE("adaptive methods write N heatmaps and cv alpha heatmaps and a static 
     CHECK(emcv::image::read_image_description(out / "cv" / "alpha-0003.png").find("alpha 0..2") != std::string::npos);
     CHECK(emcv::image::read_image_description(out / "spvg" / "frame-0003.png").empty());
     CHECK(r.out.find("samples-*.png, N 0..64 (samples per pixel); cv: alpha-*.png, alpha 0..2)") != std::string::npos);
+    // The line names, before each kind of file, exactly the rendered methods whose directory holds that kind.
+    for (const std::string kind : {"samples", "alpha"}) {
+        const std::size_t end = r.out.find(": " + kind + "-*.png");
+        REQUIRE(end != std::string::npos);
+        const std::size_t begin = r.out.rfind("; ", end) + 2;
+        std::set<std::string> named;
+        std::istringstream names(r.out.substr(begin, end - begin));
+        for (std::string name; std::getline(names >> std::ws, name, ',');) named.insert(name);
+        for (const char* m : {"diffuse", "spvg", "cv"}) {
+            INFO(kind << " files of " << m << ", the line names: " << r.out.substr(begin, end - begin));
+            CHECK(fs::exists(out / m / (kind + "-0003.png")) == (named.count(m) == 1));
+        }
+    }
     CHECK(r.err.find("legends have no text") == std::string::npos);
     // The static light never changes: no cv vs spvg line.
     CHECK(r.out.find("cv vs spvg") == std::string::npos);
