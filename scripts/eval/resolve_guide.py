@@ -11,12 +11,10 @@ the slope the least-squares slope of the current values on the guide over the pi
 light (the albedo times the lighting pass's diffuse light, `--define EMCV_RESOLVE_GUIDE_TAPS=0`, the guide until
 the taps were added) and without a guide (`--define EMCV_RESOLVE_GUIDE=0`). Two tables:
 
-  effect  resolve_table.py's columns for the three, and for the guide without the weight its change asks of the
-          blend (emcv_resolve_guide_weight; a copy of this tree's shaders with that one line taken out, read
-          through EMCV_SHADER_DIR: the script refuses when the line is no longer in the shader) (PSNR of the whole
-          frame, mean over frames 20 up to the scene's first light change, "before", and over the 30 frames from
-          it, "after"; lag: frames after the change until the resolved PSNR stays within 1 dB of its settled
-          value), 96x96, the adaptive methods at a budget of 8, on the scenes of docs/frame.md's resolve table:
+  effect  resolve_table.py's columns for the three (PSNR of the whole frame, mean over frames 20 up to the
+          scene's first light change, "before", and over the 30 frames from it, "after"; lag: frames after the
+          change until the resolved PSNR stays within 1 dB of its settled value), 96x96, the adaptive methods at
+          a budget of 8, on the scenes of docs/frame.md's resolve table:
           still cameras (`static`, light-off, the burst, the fade, the skin close-up, the tabletop), moving ones
           (`moving`, the camera move during the switch, the skin orbit). The stochastic methods only: nothing in
           diffuse's and separable's frames is sampled, so the noise box closes on the current value (to within
@@ -39,7 +37,6 @@ import subprocess
 import sys
 import tempfile
 
-from adaptive_overhead import make_variant
 from resolve_table import run_scene, summary
 from run_eval import git_commit, replace_block, write_atomically
 
@@ -49,8 +46,6 @@ NO_GUIDE = "EMCV_RESOLVE_GUIDE=0"
 # The guide of the unscattered light (the albedo times the lighting pass's diffuse) instead of the fixed estimate
 # of the scattered light (EMCV_RESOLVE_GUIDE_TAPS taps, include/emcv/port/resolve.h).
 UNSCATTERED_GUIDE = "EMCV_RESOLVE_GUIDE_TAPS=0"
-# The guide without its weight: the line that takes up this frame at emcv_resolve_guide_weight, taken out.
-NO_GUIDE_WEIGHT = [("render/resolve.comp.glsl", "        if (noise_box) weight = max(weight, guide_weight);\n", "")]
 SCENES = ["static", "light-off", "demo/scenes/variations/burst-3.json", "demo/scenes/variations/fade.json",
           "demo/scenes/validation/skin-close.json", "demo/scenes/validation/mixed-off.json", "moving",
           "demo/scenes/variations/camera-switch.json", "demo/scenes/validation/skin-orbit.json"]
@@ -67,11 +62,10 @@ def cell(value, digits=2, sign=False):
 
 
 def effect_table(build, tmp):
-    lines = ["| scene | method | raw before | resolved before: no guide | unscattered guide | guide, no weight | guide | "
-             "gain | raw after | resolved after: no guide | unscattered guide | guide, no weight | guide | gain | "
-             "lag: no guide | unscattered | guide |",
-             "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
-    unweighted_dir = make_variant(os.path.join(tmp, "no-guide-weight"), NO_GUIDE_WEIGHT)
+    lines = ["| scene | method | raw before | resolved before: no guide | unscattered guide | guide | gain | "
+             "raw after | resolved after: no guide | unscattered guide | guide | gain | lag: no guide | "
+             "unscattered | guide |",
+             "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for scene in SCENES:
         name = os.path.splitext(os.path.basename(scene))[0]
         guided, change = run_scene(build, scene, METHODS, "96x96", BUDGET, os.path.join(tmp, f"guide-{name}"))
@@ -79,20 +73,18 @@ def effect_table(build, tmp):
                                               os.path.join(tmp, f"no-guide-{name}"), [NO_GUIDE])
         unscattered, change_unscattered = run_scene(build, scene, METHODS, "96x96", BUDGET,
                                                     os.path.join(tmp, f"unscattered-{name}"), [UNSCATTERED_GUIDE])
-        unweighted, change_unweighted = run_scene(build, scene, METHODS, "96x96", BUDGET,
-                                                  os.path.join(tmp, f"no-weight-{name}"), shader_dir=unweighted_dir)
-        if not change == change_unguided == change_unscattered == change_unweighted:
+        if not change == change_unguided == change_unscattered:
             sys.exit(f"resolve_guide.py: {scene}: the light change moved with the guide "
-                     f"({change_unguided}, {change_unscattered}, {change_unweighted} -> {change})")
+                     f"({change_unguided}, {change_unscattered} -> {change})")
         for m in METHODS:
-            if not any(r["method"] == m for r in guided + unguided + unscattered + unweighted):
+            if not any(r["method"] == m for r in guided + unguided + unscattered):
                 sys.exit(f"resolve_guide.py: no rows of {m} on {scene}")
-            g, u, s, w = (summary(rows, change, m) for rows in (guided, unguided, unscattered, unweighted))
+            g, u, s = (summary(rows, change, m) for rows in (guided, unguided, unscattered))
             gain_before = None if g[1] is None or s[1] is None else g[1] - s[1]
             gain_after = None if g[3] is None or s[3] is None else g[3] - s[3]
-            lines.append("| " + " | ".join([name, m, cell(g[0]), cell(u[1]), cell(s[1]), cell(w[1]), cell(g[1]),
+            lines.append("| " + " | ".join([name, m, cell(g[0]), cell(u[1]), cell(s[1]), cell(g[1]),
                                             cell(gain_before, sign=True), cell(g[2]), cell(u[3]), cell(s[3]),
-                                            cell(w[3]), cell(g[3]), cell(gain_after, sign=True),
+                                            cell(g[3]), cell(gain_after, sign=True),
                                             "-" if u[4] is None else str(u[4]),
                                             "-" if s[4] is None else str(s[4]),
                                             "-" if g[4] is None else str(g[4])]) + " |")
@@ -147,8 +139,7 @@ def main():
     command = "`/usr/bin/python3 scripts/eval/resolve_guide.py --write-doc`"
     effect_body = "\n".join([f"Regenerated by {command}, {made}. PSNR (dB, whole frame), 96x96, the adaptive methods "
                              f"at a budget of {BUDGET}; unscattered guide: the guide of the unscattered light "
-                             f"(`--define {UNSCATTERED_GUIDE}`); guide, no weight: the guide as built without the weight "
-                             "its change asks of the blend (emcv_resolve_guide_weight); guide: as built (the fixed "
+                             f"(`--define {UNSCATTERED_GUIDE}`); guide: as built (the fixed "
                              "estimate of the scattered light); gain: as built less the unscattered guide.", "", effect])
     cost_body = "\n".join([f"Regenerated by {command}, {made}. Wall clock on llvmpipe (work, not GPU time), "
                            f"burley-{BUDGET} at 256x256, median over frames 4-29, the median of {COST_ROUNDS} "

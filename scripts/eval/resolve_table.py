@@ -46,15 +46,13 @@ def lag(psnr_by_frame, change):
     return WINDOW
 
 
-def run_scene(build, scene, methods, size, budget, out, defines=(), shader_dir=None):
-    """emcv-demo's rows for `scene` and its first light change (None without one); with `shader_dir`, the shaders
-    read from there (EMCV_SHADER_DIR: a variant of this tree's)."""
+def run_scene(build, scene, methods, size, budget, out, defines=()):
+    """emcv-demo's rows for `scene` and its first light change (None without one), under `defines` (tunables)."""
     cmd = [os.path.join(build, "bin", "emcv-demo"), "--scene", scene, "--method", ",".join(methods),
            "--spp-budget", str(budget), "--size", size, "--resolve", "taa", "--no-frames", "--out", out]
     for d in defines:
         cmd += ["--define", d]
-    env = dict(os.environ, EMCV_SHADER_DIR=shader_dir) if shader_dir else None
-    done = subprocess.run(cmd, capture_output=True, text=True, env=env)
+    done = subprocess.run(cmd, capture_output=True, text=True)
     if done.returncode != 0:
         sys.exit("resolve_table: %s failed:\n%s" % (" ".join(cmd), done.stderr))
     # The summary names the first light change in its cv vs burley-B line ("from the first light change at frame
