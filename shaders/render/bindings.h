@@ -7,8 +7,12 @@
 
 #define EMCV_RENDER_TILE_SIZE 8  // SSS tiles and compute workgroups are 8x8 pixels
 // SSS tile dispatches are 2-D, EMCV_RENDER_TILE_ROW workgroups per row: one row of n tiles would exceed GL's
-// guaranteed 65535 workgroups per dimension from 2048x2048 pixels on.
+// guaranteed 65535 workgroups per dimension from 2048x2048 pixels on. Only the shaders read it (the dispatch's
+// arguments are written on the GPU, render/tiles.h): a copy of shaders/ that defines it first runs narrower rows
+// (tests/render, "SSS tiles dispatched in many rows").
+#ifndef EMCV_RENDER_TILE_ROW
 #define EMCV_RENDER_TILE_ROW 1024
+#endif
 
 // Buffers
 #define EMCV_RENDER_FRAME 0       // uniform block: camera, viewport, frame constants (frame.h)

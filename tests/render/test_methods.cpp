@@ -112,6 +112,42 @@ TEST_CASE("the reference is reused while its inputs hold and re-rendered when th
     CHECK(messenger.error_count() == 0);
 }
 
+TEST_CASE("SSS tiles dispatched in many rows render the same image as in one row") {
+    // Large frames dispatch the SSS tiles in rows of EMCV_RENDER_TILE_ROW (1024) workgroups; the renderer may
+    // only be run at small sizes here, so a copy of shaders/ whose render/bindings.h defines rows of 3 tiles
+    // before its own #ifndef default (48 tiles: 16 rows at 64x48) must give the bit-identical image of the
+    // default (one row).
+    emcv::gl::context ctx = emcv::test::context_or_skip();
+    emcv::gl::debug_messenger messenger;
+    namespace fs = std::filesystem;
+    const fs::path copy = fresh_shader_copy("emcv-test-render-tile-rows");
+    const fs::path bindings = copy / "render" / "bindings.h";
+    std::string text;
+    {
+        std::ifstream in(bindings);
+        text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    REQUIRE(!text.empty());
+    std::ofstream(bindings) << "#define EMCV_RENDER_TILE_ROW 3\n" << text;
+
+    const scene s = emcv::test::lit_sss_plane(1.0f);
+    for (const method& m : {method{method::kind::burley, 8}, method{method::kind::separable, 11}}) {
+        render_options options;
+        options.width = 64;
+        options.height = 48;
+        renderer one_row(s, m, options);
+        one_row.render(0);
+        options.shader_dir = copy;
+        renderer many_rows(s, m, options);
+        const frame_stats& stats = many_rows.render(0);
+        INFO(m.name());
+        CHECK(stats.sss_pixels == 64u * 48u);
+        CHECK(many_rows.linear().pixels == one_row.linear().pixels);
+    }
+    fs::remove_all(copy);
+    CHECK(messenger.error_count() == 0);
+}
+
 TEST_CASE("a renderer compiles only the programs of the passes its scene and method can record") {
     // A copy of shaders/ whose separable, shadow and resolve programs do not compile: a renderer that never
     // records those passes is built and renders; one that can record them fails naming the file, at construction
