@@ -116,7 +116,7 @@ int main(int argc, char** argv) {
             for (const auto& [first, length] : windows) add(compare_after_change(result.rows, first, cv, baseline, length));
             // Each adaptive method against burley-N at its own SSS time: equal samples is not equal cost where a
             // method's per-pixel work does not scale with its samples.
-            const std::vector<std::string> adaptive = {cv, spvg, method{method::kind::cv_notex}.name()};
+            const std::vector<std::string> adaptive = adaptive_method_names();
             for (const auto& [first, length] : windows)
                 for (const std::string& name : adaptive) add(compare_at_equal_time(result.rows, first, name, length));
             // Under a quality target each adaptive method against the target itself, over the 30 frames from the

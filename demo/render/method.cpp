@@ -111,6 +111,13 @@ std::string accepted_method_names() {
     return out;
 }
 
+std::vector<std::string> adaptive_method_names() {
+    std::vector<std::string> out;
+    for (const method_row& r : method_table())
+        if (r.passes == sss_passes::adaptive) out.emplace_back(r.name);
+    return out;
+}
+
 std::string method_names_where(bool method_row::*flag) {
     std::string out;
     for (const method_row& r : method_table())

@@ -97,6 +97,9 @@ method make_reference(int samples);
 /// "diffuse, burley-N (N = 1..1024), ...": the accepted names, for error messages.
 std::string accepted_method_names();
 
+/// The names of the adaptive methods (passes == sss_passes::adaptive), in table order: spvg, cv, cv-notex.
+std::vector<std::string> adaptive_method_names();
+
 /// The names of the rows whose `flag` (a bool member of method_row) is set, in table order, joined by ", "
 /// ("spvg, cv, cv-notex" for &method_row::samples_heatmap): the text that names them in output.
 std::string method_names_where(bool method_row::*flag);

@@ -32,6 +32,9 @@ TEST_CASE("every method's name parses back to the method, and the parameters' ed
         CHECK(*back == m);
         CHECK(is_adaptive(m) == (r.history != history_layout::none));
         CHECK(r.alpha_heatmap == (r.history == history_layout::emcm2));
+        // the summary's list of adaptive methods (emcv-demo's equal-time lines) names exactly the adaptive rows
+        const std::vector<std::string> adaptive = adaptive_method_names();
+        CHECK(std::count(adaptive.begin(), adaptive.end(), m.name()) == (is_adaptive(m) ? 1 : 0));
     }
     CHECK(parse_method("burley-1") == method{method::kind::burley, 1});
     CHECK(parse_method("burley-1024") == method{method::kind::burley, 1024});
