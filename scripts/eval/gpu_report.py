@@ -4,8 +4,9 @@
 The run directory holds glinfo.txt, demo-<size>/metrics.csv (PSNR per frame against the converged reference),
 eval-<size>-run<k>.csv (SSS pass ms per frame, three runs), scaling-<size>.csv and, from the runs that have them,
 cost-<setting>/ (scripts/eval/sss_cost.py --save-raw: the SSS passes at equal samples), clocks.txt (nvidia-smi)
-and steps.txt (each step's seconds). Writes the document (docs/results.md unless --doc) atomically: the blocks
-gpu-context, gpu-teaser, gpu-scaling, gpu-cost and gpu-targets (issue 18's GPU targets, judged only where the
+and steps.txt (each step's seconds), equal-time.txt (emcv-demo's summary). Writes the document (docs/results.md unless
+--doc) atomically: the blocks gpu-context, gpu-teaser, gpu-scaling, gpu-cost (with the statistics' grain K),
+gpu-equal-time and gpu-targets (issue 18's GPU targets, judged only where the
 runs' automatic clock was GPU timestamps, i.e. on a hardware renderer)."""
 import argparse
 import glob
@@ -93,7 +94,8 @@ def scaling(run_dir):
 
 
 # The equal-samples runs of gpu_runs.sh, in the order the cost block shows them.
-COST_RUNS = ["cost-budget8-gpu", "cost-budget8-wall", "cost-budget16-gpu", "cost-budget16-wall", "cost-quality-gpu"]
+COST_RUNS = ["cost-budget8-gpu", "cost-budget8-wall", "cost-budget16-gpu", "cost-budget16-wall", "cost-quality-gpu",
+             "cost-blocks-gpu"]
 
 
 def load_cost(run_dir):
@@ -108,6 +110,22 @@ def cost_block(cost, rel):
                 f"--save-raw`, the folders `cost-*/`).")
     return "\n\n".join(sss_cost.table(st["setting"], res, st["methods"], st["baseline"], st["label_column"])
                         for st, res, _ in cost.values())
+
+
+def equal_time_block(run_dir, rel):
+    """The adaptive methods against burley-N at their own SSS time: the equal-time lines of gpu_runs.sh's
+    emcv-demo run (equal-time.txt), with the run's header line that names its size, budget and clock."""
+    path = os.path.join(run_dir, "equal-time.txt")
+    if not os.path.isfile(path):
+        return (f"No equal-time run in `{rel}/`: these runs predate the `equal-time` step of `gpu_runs.sh` "
+                f"(`equal-time.txt`).")
+    lines = open(path).read().splitlines()
+    header = [line for line in lines if line.startswith("scene ") or line.startswith("times: ")]
+    equal = [line for line in lines if " vs burley-N at " in line]
+    if not equal:
+        sys.exit(f"gpu_report.py: {path} has no equal-time line (' vs burley-N at '): not emcv-demo's summary")
+    fence = "`" * 3
+    return f"`{rel}/equal-time.txt`:\n\n{fence}text\n" + "\n".join(header + equal) + f"\n{fence}"
 
 
 def method_ms(run, method):
@@ -253,6 +271,7 @@ def main():
     text = ev.replace_block(text, "gpu-teaser", note + "\n\n".join(teaser(run_dir, s) for s in sizes), a.doc)
     text = ev.replace_block(text, "gpu-scaling", note + scaling(run_dir), a.doc)
     text = ev.replace_block(text, "gpu-cost", note + cost_block(cost, rel), a.doc)
+    text = ev.replace_block(text, "gpu-equal-time", note + equal_time_block(run_dir, rel), a.doc)
     text = ev.replace_block(text, "gpu-targets", note + targets_block(targets(cost, hardware, why_not)), a.doc)
     ev.write_atomically(a.doc, text)
     print(f"gpu_report.py: wrote the GPU blocks of {a.doc}")

@@ -71,6 +71,12 @@ def main(build):
                         "budget 16 spp, frames 2-33, 1 runs, clock gpu", "budget 16 spp, frames 2-33, 1 runs, clock wall",
                         "target variance 0.0001, frames 30-33, 1 runs, clock gpu"):
             check(f"light-off, 48x48, {setting}" in cost, f"the cost block has the table of {setting}")
+        check("K2" in cost and "K4" in cost, "the cost block has the statistics' grain table (K1, K2, K4)")
+        equal = block(text, "gpu-equal-time")
+        for method in ("spvg", "cv", "cv-notex"):
+            check(f"{method} vs burley-N at {method}'s SSS time" in equal,
+                  f"the equal-time block has {method}'s line from the run's summary")
+        check("scene light-off, 48x48" in equal, "the equal-time block names the run's scene and size")
         rows = [line for line in block(text, "gpu-targets").splitlines() if line.startswith("| ") and
                 not line.startswith("| target")]
         check(len(rows) == 9 and all("| not judged:" in row and "not measured" not in row for row in rows),

@@ -2,12 +2,14 @@
 // The method table (render/method.hpp) and the tunables (render/tunables.hpp): names round-trip through the
 // parser, each row's SSS passes are the ones the planner lists, the tunables list equals the port headers'
 // #ifndef blocks, --define values are validated, and a define reaches the shaders.
+#include <catch2/catch_approx.hpp>
 #include <catch2/catch_test_macros.hpp>
 #include <catch2/matchers/catch_matchers_string.hpp>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -119,6 +121,50 @@ TEST_CASE("the tunables are exactly the #ifndef blocks of the port headers") {
     std::set<std::string> listed;
     for (const tunable& t : tunables()) listed.insert(std::string(t.name));
     CHECK(listed == in_headers);
+}
+
+TEST_CASE("docs/renderer.md's tunables table gives each history tunable's type, range and default as the code") {
+    // Rows "| `EMCV_HISTORY_X` | type | range | default | meaning |": range "[a, b]" or "(a, b]" (the tunable's
+    // bounds and whether the lower one is open), or a list "1, 2 or 4" within them; default a number.
+    std::ifstream in(std::string(EMCV_SOURCE_DIR) + "/docs/renderer.md");
+    REQUIRE(in.good());
+    const std::regex row(R"(^\| `(EMCV_HISTORY_[A-Z_]+)` \| (float|int|uint) \| ([^|]+) \| ([^|]+) \|)");
+    const std::regex interval(R"(^([\[(])([-0-9.e]+), ([-0-9.e]+)\]$)");
+    std::set<std::string> documented;
+    for (std::string line; std::getline(in, line);) {
+        std::smatch m;
+        if (!std::regex_search(line, m, row)) continue;
+        const std::string name = m[1], type = m[2], range = m[3], value = m[4];
+        INFO(name << ": " << line.substr(0, 120));
+        CHECK(documented.insert(name).second);
+        const auto t = std::find_if(tunables().begin(), tunables().end(),
+                                    [&](const tunable& x) { return x.name == name; });
+        REQUIRE(t != tunables().end());
+        CHECK(type == (t->kind == tunable::type::real ? "float" : t->kind == tunable::type::integer ? "int" : "uint"));
+        CHECK(std::stod(value) == Catch::Approx(t->default_value).epsilon(1e-6));
+        std::smatch bounds;
+        const std::string trimmed = range.substr(0, range.find_last_not_of(' ') + 1);
+        if (std::regex_match(trimmed, bounds, interval)) {
+            CHECK((bounds[1] == "(") == t->minimum_exclusive);
+            CHECK(std::stod(bounds[2]) == t->minimum);
+            CHECK(std::stod(bounds[3]) == t->maximum);
+        } else {  // a list of allowed values: each within the bounds, the ends the bounds
+            std::vector<double> allowed;
+            const std::regex number("[0-9.]+");
+            for (auto it = std::sregex_iterator(trimmed.begin(), trimmed.end(), number);
+                 it != std::sregex_iterator(); ++it)
+                allowed.push_back(std::stod(it->str()));
+            REQUIRE(allowed.size() >= 2);
+            CHECK(allowed.front() == t->minimum);
+            CHECK(allowed.back() == t->maximum);
+        }
+    }
+    // every history tunable has its row
+    for (const tunable& t : tunables()) {
+        if (std::string(t.name).rfind("EMCV_HISTORY_", 0) != 0) continue;
+        INFO(t.name << " has no row in docs/renderer.md's tunables table");
+        CHECK(documented.count(std::string(t.name)) == 1);
+    }
 }
 
 TEST_CASE("define values are validated and written as GLSL literals of the tunable's type") {
