@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-// shaders/adaptive/history_io.h — the history images of one adaptive method, chosen by the define the renderer
-// passes from the method's row: EMCV_ADAPTIVE_SPVG, EMCV_ADAPTIVE_CV or EMCV_ADAPTIVE_NOTEX, and their load/store in the port's types
-// (include/emcv/port/history.h holds the layouts and every formula).
+// shaders/adaptive/history_io.h — the history of one adaptive method, whose define the renderer passes from the
+// method's row (EMCV_ADAPTIVE_SPVG, EMCV_ADAPTIVE_CV or EMCV_ADAPTIVE_NOTEX): its layout (adaptive/layout_emcm2.h
+// or layout_moving.h, chosen below), the blocks of a tile, and the history update of a tile after sampling
+// (include/emcv/port/history.h holds every formula).
 #ifndef EMCV_ADAPTIVE_HISTORY_IO_H
 #define EMCV_ADAPTIVE_HISTORY_IO_H
 
@@ -12,15 +13,13 @@
 #include "render/burley_taps.h"
 #include "render/gbuffer_read.h"
 
-// Coherent: under a quality target the burley pass plans a pixel's history in one thread and, after sorting the
-// tile by N, updates it in another (sss_burley.comp.glsl, sort_tile_by_count).
+// The history layout of the method (its row of the method table: history_layout), the one place that chooses
+// between them: its images, EmcvAdaptiveState and the functions every pass calls (init, decode, store, blend,
+// sigma2, effective frames, the sub-pixel test, the push and the noise-test hooks).
 #if defined(EMCV_ADAPTIVE_CV)
-layout(rgba32f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_A)) coherent uniform image2D history_a;
-layout(rg32f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_B)) coherent uniform image2D history_b;
-#define EmcvAdaptiveState EmcvEmcm2
+#include "adaptive/layout_emcm2.h"
 #elif defined(EMCV_ADAPTIVE_SPVG) || defined(EMCV_ADAPTIVE_NOTEX)
-layout(rgba16f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_A)) coherent uniform image2D history_a;
-#define EmcvAdaptiveState EmcvMovingStats
+#include "adaptive/layout_moving.h"
 #else
 #error "the renderer defines the method: EMCV_ADAPTIVE_SPVG, EMCV_ADAPTIVE_CV or EMCV_ADAPTIVE_NOTEX (its row of the method table)"
 #endif
@@ -108,94 +107,6 @@ EmcvAdaptiveBlock emcv_adaptive_block(uint j, ivec2 origin) {
     return b;
 }
 
-/// A fresh (reset) state.
-EmcvAdaptiveState emcv_adaptive_init() {
-#if defined(EMCV_ADAPTIVE_CV)
-    return emcv_emcm2_init();
-#else
-    return emcv_moving_stats_init();
-#endif
-}
-
-/// Decodes raw history texels; false (state reset) when they are poisoned.
-bool emcv_adaptive_decode(vec4 a, vec4 b, out EmcvAdaptiveState s) {
-#if defined(EMCV_ADAPTIVE_CV)
-    return emcv_history_decode_emcm2(a, b.xy, s);
-#else
-    return emcv_history_decode_stats(a, s);
-#endif
-}
-
-void emcv_adaptive_store(ivec2 p, EmcvAdaptiveState s) {
-#if defined(EMCV_ADAPTIVE_CV)
-    imageStore(history_a, p, emcv_history_encode_emcm2_cov(s));
-    imageStore(history_b, p, vec4(emcv_history_encode_emcm2_means(s), 0.0f, 0.0f));
-#else
-    imageStore(history_a, p, emcv_history_encode_stats(s));
-#endif
-}
-
-/// Stores texels as they were read (a kept history: no second rounding).
-void emcv_adaptive_store_raw(ivec2 p, vec4 a, vec4 b) {
-    imageStore(history_a, p, a);
-#if defined(EMCV_ADAPTIVE_CV)
-    imageStore(history_b, p, b);
-#endif
-}
-
-/// Resampling a reprojected history: adds w times a neighbour's statistics (the means and comoments, not the
-/// count) to a running blend (a fresh state, emcv_adaptive_init(), to start: its statistics are 0).
-void emcv_adaptive_blend_add(inout EmcvAdaptiveState blend, float w, EmcvAdaptiveState s) {
-#if defined(EMCV_ADAPTIVE_CV)
-    blend.mean += w * s.mean;
-    blend.cov += w * s.cov;
-#else
-    blend.mean += w * s.mean;
-    blend.variance += w * s.variance;
-#endif
-}
-
-/// The blend's statistics, divided by its weight, into state s (whose count and flags stay).
-void emcv_adaptive_blend_finish(inout EmcvAdaptiveState s, EmcvAdaptiveState blend, float weight) {
-#if defined(EMCV_ADAPTIVE_CV)
-    s.mean = blend.mean / weight;
-    s.cov = blend.cov / weight;
-#else
-    s.mean = blend.mean / weight;
-    s.variance = blend.variance / weight;
-#endif
-}
-
-/// The method's per-sample variance from its state (emcv_history_no_variance() before two frames): spvg f's,
-/// cv the residual's at the EMCM's alpha, cv-notex the residual's at alpha = 1.
-float emcv_adaptive_sigma2(EmcvAdaptiveState s) {
-#if defined(EMCV_ADAPTIVE_CV)
-    return emcv_history_sigma2_cv(s, EMCV_HISTORY_ETA_EMCM);
-#else
-    return emcv_history_sigma2_moving(s, EMCV_HISTORY_ETA_MOVING);
-#endif
-}
-
-/// The effective frames the method's per-sample variance rests on (emcv_history_effective_frames at its eta).
-float emcv_adaptive_effective_frames(EmcvAdaptiveState s) {
-#if defined(EMCV_ADAPTIVE_CV)
-    return emcv_history_effective_frames(s.count, EMCV_HISTORY_ETA_EMCM);
-#else
-    return emcv_history_effective_frames(s.count, EMCV_HISTORY_ETA_MOVING);
-#endif
-}
-
-/// Whether a kernel whose widest channel has shape distance `widest_d` (mm) covers under a pixel at
-/// `pixels_per_mm`, where the control-variate methods take no samples (spvg never skips: it has no control to
-/// stand in for the scattered value).
-bool emcv_adaptive_sub_pixel_kernel(float widest_d, float pixels_per_mm) {
-#if defined(EMCV_ADAPTIVE_CV) || defined(EMCV_ADAPTIVE_NOTEX)
-    return emcv_history_sub_pixel(widest_d, pixels_per_mm);
-#else
-    return false;
-#endif
-}
-
 /// emcv_adaptive_sub_pixel_kernel at scattering pixel p of material `code`, from the taps' setup there.
 bool emcv_adaptive_sub_pixel(ivec2 p, uint code) {
     EmcvBurleyPixel px = emcv_render_burley_pixel(p, code);
@@ -211,13 +122,8 @@ float emcv_adaptive_tracked(vec3 albedo, vec3 irradiance) {
 /// The history state of SSS pixel p as this frame's samples pass left it (a poisoned texel decodes as a fresh
 /// state).
 EmcvAdaptiveState emcv_adaptive_load(ivec2 p) {
-#if defined(EMCV_ADAPTIVE_CV)
-    vec4 b = imageLoad(history_b, p);
-#else
-    vec4 b = vec4(0.0f);
-#endif
     EmcvAdaptiveState s;
-    emcv_adaptive_decode(imageLoad(history_a, p), b, s);
+    emcv_adaptive_decode(imageLoad(history_a, p), emcv_adaptive_load_b(p), s);
     return s;
 }
 
@@ -237,23 +143,11 @@ EmcvAdaptiveState emcv_adaptive_load(ivec2 p) {
 /// refused by the port (state unchanged); a poisoned stored state is reset, never used.
 void emcv_adaptive_update(ivec2 texel, EmcvAdaptiveState s, float f, float g, float batch, float noise_ratio) {
     if (batch == 0.0f) return;
-#if defined(EMCV_ADAPTIVE_CV)
-    emcv_history_push_cv(s, f, g, EMCV_HISTORY_ETA_EMCM, batch);
-    emcv_history_rescale_cv(s, noise_ratio);
-#elif defined(EMCV_ADAPTIVE_NOTEX)
-    emcv_history_push_notex(s, f, g, EMCV_HISTORY_ETA_MOVING, batch);
-#else
-    emcv_moving_stats_push_batch(s, f, EMCV_HISTORY_ETA_MOVING, batch);
-#endif
+    emcv_adaptive_push(s, f, g, batch, noise_ratio);
     emcv_adaptive_store(texel, s);
 }
 
 #if defined(EMCV_ADAPTIVE_TILE_UPDATE)
-#if defined(EMCV_ADAPTIVE_CV)
-// The tile's noise-test pool (emcv_history_noise_add's: sums of term units, of relative-variance units, blocks),
-// added to with atomics: fixed-point sums are exact in any order.
-shared uint tile_noise_pool[3];
-#endif
 // The tile's pixels after sampling, at their local index: tracked f and G and the samples taken (0: none).
 shared float tile_pixel_f[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];
 shared float tile_pixel_g[EMCV_RENDER_TILE_SIZE * EMCV_RENDER_TILE_SIZE];
@@ -275,9 +169,7 @@ void emcv_adaptive_update_tile(uint local, ivec2 origin, vec3 scattered, vec3 un
         tile_pixel_f[local] = emcv_adaptive_tracked(albedo, scattered);
         tile_pixel_g[local] = emcv_adaptive_tracked(albedo, unscattered);
     }
-#if defined(EMCV_ADAPTIVE_CV)
-    if (gl_LocalInvocationIndex < 3u) tile_noise_pool[gl_LocalInvocationIndex] = 0u;
-#endif
+    emcv_adaptive_noise_clear(gl_LocalInvocationIndex);
     memoryBarrierShared();
     barrier();
     EmcvAdaptiveState s = emcv_adaptive_init();
@@ -312,25 +204,11 @@ void emcv_adaptive_update_tile(uint local, ivec2 origin, vec3 scattered, vec3 un
             batch = emcv_history_block_batch(taken, pixels);
             s = emcv_adaptive_load(texel);
         }
-#if defined(EMCV_ADAPTIVE_CV)
-        float term = batch > 0.0f ? emcv_history_noise_term(s, f, g, EMCV_HISTORY_ETA_EMCM, batch) : emcv_history_no_variance();
-        uvec3 own = uvec3(0u);
-        emcv_history_noise_add(own, term, emcv_history_noise_relative(max(batch, 1.0f)));
-        if (own.z != 0u) {
-            atomicAdd(tile_noise_pool[0], own.x);
-            atomicAdd(tile_noise_pool[1], own.y);
-            atomicAdd(tile_noise_pool[2], own.z);
-        }
-#endif
+        emcv_adaptive_noise_add(s, f, g, batch);  // cv's noise test (layout_emcm2.h); the others add nothing
     }
-#if defined(EMCV_ADAPTIVE_CV)
     memoryBarrierShared();
-    barrier();
-    uvec3 pool = uvec3(tile_noise_pool[0], tile_noise_pool[1], tile_noise_pool[2]);
-    if (emcv_adaptive_holds_block()) emcv_adaptive_update(texel, s, f, g, batch, emcv_history_noise_ratio(pool));
-#else
-    if (emcv_adaptive_holds_block()) emcv_adaptive_update(texel, s, f, g, batch, 1.0f);
-#endif
+    barrier();  // the tile's noise pool is complete
+    if (emcv_adaptive_holds_block()) emcv_adaptive_update(texel, s, f, g, batch, emcv_adaptive_noise_ratio());
 }
 #endif
 

@@ -18,19 +18,9 @@
 #include "render/tiles.h"
 
 layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_HISTORY_PREV_A)) uniform sampler2D history_prev_a;
-layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_HISTORY_PREV_B)) uniform sampler2D history_prev_b;
 layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_PREV_DEPTH)) uniform sampler2D prev_depth;
 layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_PREV_NORMAL)) uniform sampler2D prev_normal;
 layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_PREV_MATERIAL)) uniform usampler2D prev_material;
-
-/// Last frame's second history texel at q: cv's means; spvg and cv-notex keep one texel and fetch nothing here.
-vec4 emcv_adaptive_previous_b(ivec2 q) {
-#if defined(EMCV_ADAPTIVE_CV)
-    return texelFetch(history_prev_b, q, 0);
-#else
-    return vec4(0.0f);
-#endif
-}
 
 /// Whether last frame's pixel q shows the surface pixel p shows now (emcv_history_reusable; false off screen).
 bool emcv_adaptive_same_surface(ivec2 q, uint material, float expected_prev_depth, vec3 normal) {
@@ -157,13 +147,10 @@ float emcv_adaptive_own_sigma2(EmcvAdaptiveBlock blk, out float frames) {
 float emcv_adaptive_stored_sigma2(EmcvAdaptiveBlock blk, out float frames) {
     frames = 0.0f;
     if (blk.code == 0u) return emcv_history_no_samples();
-#if defined(EMCV_ADAPTIVE_CV)
-    vec4 b = imageLoad(history_b, blk.texel);  // this invocation's own store: ordered after it
-#else
-    vec4 b = vec4(0.0f);
-#endif
+    // this invocation's own stores: ordered after them
     EmcvAdaptiveState s;
-    if (!emcv_adaptive_decode(imageLoad(history_a, blk.texel), b, s)) emcv_adaptive_store(blk.texel, s);
+    if (!emcv_adaptive_decode(imageLoad(history_a, blk.texel), emcv_adaptive_load_b(blk.texel), s))
+        emcv_adaptive_store(blk.texel, s);
     return emcv_adaptive_state_sigma2(blk.sub_pixel, s, frames);
 }
 #endif

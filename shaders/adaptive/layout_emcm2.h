@@ -1,0 +1,102 @@
+// SPDX-License-Identifier: MIT
+// shaders/adaptive/layout_emcm2.h — cv's history layout (the method table's history_layout::emcm2): the EMCM over
+// (f, G) (include/emcv/port/ema.h) in two texels per pixel or block, and what only this layout does: the means'
+// second texel, the tile's noise test before the push. adaptive/history_io.h includes it, or layout_moving.h,
+// which implements the same functions; every formula is the port's (include/emcv/port/history.h).
+#ifndef EMCV_ADAPTIVE_LAYOUT_H
+#define EMCV_ADAPTIVE_LAYOUT_H
+
+// Coherent: under a quality target the burley pass plans a block's history and updates it in the invocation that
+// holds the block, after the tile's sort hands the pixels out (sss_burley.comp.glsl, sort_tile_by_count).
+layout(rgba32f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_A)) coherent uniform image2D history_a;
+layout(rg32f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_B)) coherent uniform image2D history_b;
+layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_HISTORY_PREV_B)) uniform sampler2D history_prev_b;
+#define EmcvAdaptiveState EmcvEmcm2
+
+/// A fresh (reset) state.
+EmcvAdaptiveState emcv_adaptive_init() { return emcv_emcm2_init(); }
+
+/// Decodes raw history texels; false (state reset) when they are poisoned.
+bool emcv_adaptive_decode(vec4 a, vec4 b, out EmcvAdaptiveState s) { return emcv_history_decode_emcm2(a, b.xy, s); }
+
+void emcv_adaptive_store(ivec2 p, EmcvAdaptiveState s) {
+    imageStore(history_a, p, emcv_history_encode_emcm2_cov(s));
+    imageStore(history_b, p, vec4(emcv_history_encode_emcm2_means(s), 0.0f, 0.0f));
+}
+
+/// Stores texels as they were read (a kept history: no second rounding).
+void emcv_adaptive_store_raw(ivec2 p, vec4 a, vec4 b) {
+    imageStore(history_a, p, a);
+    imageStore(history_b, p, b);
+}
+
+/// This frame's second texel at p (the means).
+vec4 emcv_adaptive_load_b(ivec2 p) { return imageLoad(history_b, p); }
+
+/// Last frame's second texel at q.
+vec4 emcv_adaptive_previous_b(ivec2 q) { return texelFetch(history_prev_b, q, 0); }
+
+/// Resampling a reprojected history: adds w times a neighbour's means and comoments (not the count) to a running
+/// blend (a fresh state, emcv_adaptive_init(), to start: its statistics are 0).
+void emcv_adaptive_blend_add(inout EmcvAdaptiveState blend, float w, EmcvAdaptiveState s) {
+    blend.mean += w * s.mean;
+    blend.cov += w * s.cov;
+}
+
+/// The blend's statistics, divided by its weight, into state s (whose count and flags stay).
+void emcv_adaptive_blend_finish(inout EmcvAdaptiveState s, EmcvAdaptiveState blend, float weight) {
+    s.mean = blend.mean / weight;
+    s.cov = blend.cov / weight;
+}
+
+/// The residual's per-sample variance at the EMCM's alpha (emcv_history_no_variance() before two frames).
+float emcv_adaptive_sigma2(EmcvAdaptiveState s) { return emcv_history_sigma2_cv(s, EMCV_HISTORY_ETA_EMCM); }
+
+/// The effective frames that variance rests on (emcv_history_effective_frames at the EMCM's eta).
+float emcv_adaptive_effective_frames(EmcvAdaptiveState s) {
+    return emcv_history_effective_frames(s.count, EMCV_HISTORY_ETA_EMCM);
+}
+
+/// Whether a kernel whose widest channel has shape distance `widest_d` (mm) covers under a pixel at
+/// `pixels_per_mm`: there the control stands in for the scattered value and the block takes no samples.
+bool emcv_adaptive_sub_pixel_kernel(float widest_d, float pixels_per_mm) {
+    return emcv_history_sub_pixel(widest_d, pixels_per_mm);
+}
+
+/// The push of a block's batch (emcv_history_push_cv: a change the control does not explain clipped), then its
+/// comoments scaled by the tile's noise test (emcv_history_rescale_cv).
+void emcv_adaptive_push(inout EmcvAdaptiveState s, float f, float g, float batch, float noise_ratio) {
+    emcv_history_push_cv(s, f, g, EMCV_HISTORY_ETA_EMCM, batch);
+    emcv_history_rescale_cv(s, noise_ratio);
+}
+
+#if defined(EMCV_ADAPTIVE_TILE_UPDATE)
+// The tile's noise-test pool (emcv_history_noise_add's: sums of term units, of relative-variance units, blocks),
+// added to with atomics: fixed-point sums are exact in any order.
+shared uint tile_noise_pool[3];
+
+/// Clears the tile's pool (local invocation index `local`; the caller's barrier follows).
+void emcv_adaptive_noise_clear(uint local) {
+    if (local < 3u) tile_noise_pool[local] = 0u;
+}
+
+/// Adds a block's noise-test term before its push (emcv_history_noise_term) and the term's relative variance to
+/// the tile's pool, where it has one (a history as old as its memory, a batch taken).
+void emcv_adaptive_noise_add(EmcvAdaptiveState s, float f, float g, float batch) {
+    float term = batch > 0.0f ? emcv_history_noise_term(s, f, g, EMCV_HISTORY_ETA_EMCM, batch) : emcv_history_no_variance();
+    uvec3 own = uvec3(0u);
+    emcv_history_noise_add(own, term, emcv_history_noise_relative(max(batch, 1.0f)));
+    if (own.z != 0u) {
+        atomicAdd(tile_noise_pool[0], own.x);
+        atomicAdd(tile_noise_pool[1], own.y);
+        atomicAdd(tile_noise_pool[2], own.z);
+    }
+}
+
+/// The ratio the tile's blocks scale their comoments by (emcv_history_noise_ratio), after the pool's barrier.
+float emcv_adaptive_noise_ratio() {
+    return emcv_history_noise_ratio(uvec3(tile_noise_pool[0], tile_noise_pool[1], tile_noise_pool[2]));
+}
+#endif
+
+#endif  // #ifndef EMCV_ADAPTIVE_LAYOUT_H
