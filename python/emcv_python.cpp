@@ -39,9 +39,7 @@ const char* estimator_name(emcv::sampling_estimator e) {
 }
 
 emcv::sampling_estimator parse_estimator(const std::string& name) {
-    if (name == "spvg") return emcv::sampling_estimator::spvg;
-    if (name == "cv") return emcv::sampling_estimator::cv;
-    if (name == "cv_notex" || name == "cv-notex") return emcv::sampling_estimator::cv_notex;
+    if (const auto e = emcv::parse_sampling_estimator(name)) return *e;
     throw py::value_error("emcv: estimator must be 'spvg', 'cv' or 'cv_notex', got '" + name + "'");
 }
 

@@ -207,8 +207,8 @@ run_result run_headless(const scene& s, const options& o, int frames, timing clo
                     pending.push_back({dir / frame_file(frame, "png", stem), std::move(png.image),
                                        std::move(png.description)});
                 };
-                if (row_of(run.m).samples_heatmap) add_heatmap("samples", run.r.sample_counts(), samples_heatmap_scale);
-                if (row_of(run.m).alpha_heatmap) add_heatmap("alpha", run.r.cv_alpha(), alpha_heatmap_scale);
+                if (row_of(run.m).samples_heatmap()) add_heatmap("samples", run.r.sample_counts(), samples_heatmap_scale);
+                if (row_of(run.m).alpha_heatmap()) add_heatmap("alpha", run.r.cv_alpha(), alpha_heatmap_scale);
             }
             if (!is_reference) {
                 run.previous_display = std::move(display);

@@ -42,7 +42,7 @@ void list_methods(std::ostream& out) {
     static const char* const passes[] = {"none", "burley", "separable", "adaptive"};
     for (const method_row& r : method_table()) {
         const std::string name = r.in_all >= 0 ? method{r.type, r.in_all}.name() : std::string(r.name);
-        out << name << '\t' << passes[static_cast<int>(r.passes)] << '\t' << r.help << '\n';
+        out << name << '\t' << passes[static_cast<int>(r.passes())] << '\t' << r.help << '\n';
     }
 }
 

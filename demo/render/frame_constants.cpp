@@ -36,7 +36,7 @@ void frame_constants::upload(const gpu_resources& r, const scene& s, const metho
     // The burley pass takes the method's fixed count; an adaptive method's own burley program (built with its
     // EMCV_ADAPTIVE_* define, adaptive::history) takes N per pixel from the adaptive-samples pass instead.
     const method_row& row = row_of(m);
-    const int fixed = row.passes == sss_passes::burley ? m.samples : 0;
+    const int fixed = row.passes() == sss_passes::burley ? m.samples : 0;
     frame_.sss = glm::ivec4(fixed, 0, static_cast<int>(s.materials.size()), 0);
     glNamedBufferSubData(r.frame_ubo.id(), 0, sizeof frame_, &frame_);
 

@@ -10,26 +10,40 @@ namespace emcv::demo {
 
 const std::vector<method_row>& method_table() {
     using k = method::kind;
+    using e = emcv::sampling_estimator;
     static const std::vector<method_row> rows{
         {k::diffuse, "diffuse", "no scattering: the lit diffuse as it is (the lower bound of cost)", {}, 0,
-         sss_passes::none, history_layout::none, "", false, false},
+         sss_passes::none, std::nullopt},
         {k::burley, "burley", "Burley screen-space SSS, a fixed N samples per SSS pixel",
-         {"samples per SSS pixel", 1, 1024, {}, 0, true}, 16, sss_passes::burley, history_layout::none, "", false,
-         false},
+         {"samples per SSS pixel", 1, 1024, {}, 0, true}, 16, sss_passes::burley, std::nullopt},
         {k::separable, "separable", "separable SSS (two 1-D passes) with 11, 17 or 25 taps (default 17)",
          {"taps", 11, 25, {11, 17, 25}, default_separable_taps, true}, default_separable_taps,
-         sss_passes::separable, history_layout::none, "", false, false},
+         sss_passes::separable, std::nullopt},
         {k::reference, "reference", "Burley with 1024 samples per pixel, reused while its inputs hold",
          {"samples per pixel", 1, 1 << 20, {}, default_reference_samples, false}, default_reference_samples,
-         sss_passes::burley, history_layout::none, "", false, false},
-        {k::spvg, "spvg", "adaptive: N from the moving variance of f (SPVG 2020)", {}, 0, sss_passes::adaptive,
-         history_layout::moving_stats, "EMCV_ADAPTIVE_SPVG", true, false},
+         sss_passes::burley, std::nullopt},
+        {k::spvg, "spvg", "adaptive: N from the moving variance of f (SPVG 2020)", {}, 0, sss_passes::none, e::spvg},
         {k::cv, "cv", "adaptive: N from the residual variance of the control variate, EMCM over (f, G)", {}, 0,
-         sss_passes::adaptive, history_layout::emcm2, "EMCV_ADAPTIVE_CV", true, true},
+         sss_passes::none, e::cv},
         {k::cv_notex, "cv-notex", "adaptive: N from the moving variance of f - G (alpha = 1)", {}, 0,
-         sss_passes::adaptive, history_layout::moving_stats, "EMCV_ADAPTIVE_NOTEX", true, false},
+         sss_passes::none, e::cv_notex},
     };
     return rows;
+}
+
+history_layout method_row::history() const {
+    if (!estimator) return history_layout::none;
+    return *estimator == emcv::sampling_estimator::cv ? history_layout::emcm2 : history_layout::moving_stats;
+}
+
+std::string_view method_row::adaptive_define() const {
+    if (!estimator) return {};
+    switch (*estimator) {
+        case emcv::sampling_estimator::spvg: return "EMCV_ADAPTIVE_SPVG";
+        case emcv::sampling_estimator::cv: return "EMCV_ADAPTIVE_CV";
+        case emcv::sampling_estimator::cv_notex: return "EMCV_ADAPTIVE_NOTEX";
+    }
+    throw std::logic_error("method table: an estimator without a shader define");
 }
 
 const method_row& row_of(method::kind type) {
@@ -114,14 +128,14 @@ std::string accepted_method_names() {
 std::vector<std::string> adaptive_method_names() {
     std::vector<std::string> out;
     for (const method_row& r : method_table())
-        if (r.passes == sss_passes::adaptive) out.emplace_back(r.name);
+        if (r.estimator) out.emplace_back(r.name);
     return out;
 }
 
-std::string method_names_where(bool method_row::*flag) {
+std::string method_names_where(bool (method_row::*flag)() const) {
     std::string out;
     for (const method_row& r : method_table())
-        if (r.*flag) out += (out.empty() ? "" : ", ") + std::string(r.name);
+        if ((r.*flag)()) out += (out.empty() ? "" : ", ") + std::string(r.name);
     return out;
 }
 

@@ -8,6 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include <emcv/adaptive_sampling.hpp>
+
 namespace emcv::demo {
 
 /// A scattering method, as named on the command line (`--method`).
@@ -50,19 +52,27 @@ struct method_parameter {
     bool on_command_line = true;  ///< false: only the bare name parses (reference; tests set other counts in code)
 };
 
-/// One row of the method table.
+/// One row of the method table. An adaptive method is the one thing its row says once: its estimator (the
+/// library's emcv::sampling_estimator), from which its passes, history layout, shader define and heatmaps follow.
 struct method_row {
     method::kind type;
     std::string_view name;  ///< the name, or the prefix before "-<parameter>"
     std::string_view help;  ///< one line for --help and --list-methods
     method_parameter parameter;
     int in_all = -1;  ///< the parameter `--method all` renders it with; -1: not part of `all`
-    sss_passes passes = sss_passes::none;
-    history_layout history = history_layout::none;
-    /// The shader define that selects the method's formulas in the adaptive passes (shaders/adaptive/*.comp.glsl).
-    std::string_view adaptive_define;
-    bool samples_heatmap = false;  ///< --out also writes samples-NNNN.png (N per pixel)
-    bool alpha_heatmap = false;    ///< --out also writes alpha-NNNN.png (the control-variate coefficient)
+    sss_passes fixed_passes = sss_passes::none;  ///< the SSS passes of a method that is not adaptive
+    std::optional<emcv::sampling_estimator> estimator;  ///< set: an adaptive method, choosing N with this estimator
+
+    /// The SSS passes it records: sss_passes::adaptive for an adaptive method, else fixed_passes.
+    sss_passes passes() const { return estimator ? sss_passes::adaptive : fixed_passes; }
+    /// What it keeps per pixel between frames: cv's EMCM, the moving statistics of spvg and cv-notex, or none.
+    history_layout history() const;
+    /// The define that selects its formulas in the adaptive shaders ("EMCV_ADAPTIVE_CV", ...); empty if none.
+    std::string_view adaptive_define() const;
+    /// --out also writes samples-NNNN.png (N per pixel): every adaptive method.
+    bool samples_heatmap() const { return estimator.has_value(); }
+    /// --out also writes alpha-NNNN.png (the control-variate coefficient): the layout that holds C_fG / C_GG.
+    bool alpha_heatmap() const { return history() == history_layout::emcm2; }
 };
 
 /// Every method, in the order of `--method all` and of the summary.
@@ -72,12 +82,12 @@ const method_row& row_of(method::kind type);
 inline const method_row& row_of(const method& m) { return row_of(m.type); }
 
 /// True for the methods that choose N per pixel from a history (spvg, cv, cv-notex).
-inline bool is_adaptive(const method& m) { return row_of(m).passes == sss_passes::adaptive; }
+inline bool is_adaptive(const method& m) { return row_of(m).estimator.has_value(); }
 
 /// True for the methods whose SSS is a Monte Carlo estimate (the burley pass: burley-N, reference and the
 /// adaptive methods): their output carries noise, which the burley pass stores beside it for the resolve.
 inline bool samples_randomly(const method& m) {
-    return row_of(m).passes == sss_passes::burley || row_of(m).passes == sss_passes::adaptive;
+    return row_of(m).passes() == sss_passes::burley || row_of(m).passes() == sss_passes::adaptive;
 }
 
 /// Default sample counts.
@@ -97,12 +107,12 @@ method make_reference(int samples);
 /// "diffuse, burley-N (N = 1..1024), ...": the accepted names, for error messages.
 std::string accepted_method_names();
 
-/// The names of the adaptive methods (passes == sss_passes::adaptive), in table order: spvg, cv, cv-notex.
+/// The names of the adaptive methods (rows with an estimator), in table order: spvg, cv, cv-notex.
 std::vector<std::string> adaptive_method_names();
 
-/// The names of the rows whose `flag` (a bool member of method_row) is set, in table order, joined by ", "
-/// ("spvg, cv, cv-notex" for &method_row::samples_heatmap): the text that names them in output.
-std::string method_names_where(bool method_row::*flag);
+/// The names of the rows for which `flag` (a bool member function of method_row) holds, in table order, joined by
+/// ", " ("spvg, cv, cv-notex" for &method_row::samples_heatmap): the text that names them in output.
+std::string method_names_where(bool (method_row::*flag)() const);
 
 /// One line per row: "  name  help", the text of --help's method list and of --list-methods.
 std::string method_help_lines(std::size_t indent);

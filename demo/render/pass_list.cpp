@@ -85,7 +85,7 @@ const std::vector<planned_pass>& frame_planner::plan(int frame, const std::vecto
         if (light_shines(s.lights[casters_[layer]], frame)) passes_.push_back({pass_id::shadow, casters_[layer], layer});
     passes_.push_back({pass_id::lighting, 0, 0});
     if (scatters_) {
-        switch (row_of(m_).passes) {
+        switch (row_of(m_).passes()) {
             case sss_passes::none: break;
             case sss_passes::burley: passes_.push_back({pass_id::sss_burley, 0, 0}); break;
             case sss_passes::separable:

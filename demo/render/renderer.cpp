@@ -111,7 +111,7 @@ struct renderer::impl {
         gpu::stats_block gpu_stats{};
         glGetNamedBufferSubData(res.stats_ssbo.id(), 0, sizeof gpu_stats, &gpu_stats);
         stats.sss_pixels = gpu_stats.sss_pixels;
-        if (row_of(m).passes == sss_passes::separable) {  // every SSS pixel takes 2 * taps
+        if (row_of(m).passes() == sss_passes::separable) {  // every SSS pixel takes 2 * taps
             stats.max_spp = gpu_stats.sss_pixels > 0 ? 2 * m.samples : 0;
             stats.mean_spp = stats.max_spp;
         } else {

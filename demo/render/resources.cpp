@@ -220,8 +220,8 @@ void prepare_pass_programs(pass_programs& p, const shader_setup& shaders, const 
         p.shadow = gl::program::graphics(dir / "shadow.vert.glsl", dir / "shadow.frag.glsl", pre);
     compute(p.lighting, "lighting.comp.glsl");
     // The adaptive methods' burley program is their history's (adaptive::history), built with their define.
-    if (row_of(m).passes == sss_passes::burley) compute(p.burley, "sss_burley.comp.glsl");
-    if (row_of(m).passes == sss_passes::separable) compute(p.separable, "sss_separable.comp.glsl");
+    if (row_of(m).passes() == sss_passes::burley) compute(p.burley, "sss_burley.comp.glsl");
+    if (row_of(m).passes() == sss_passes::separable) compute(p.separable, "sss_separable.comp.glsl");
     compute(p.composite, "composite.comp.glsl");
     if (resolve == resolve_mode::taa) compute(p.resolve, "resolve.comp.glsl");
 }
@@ -299,7 +299,7 @@ gpu_resources make_gpu_resources(const scene& s, const method& m, int width, int
 }
 
 void upload_materials(gpu_resources& r, const scene& s, const method& m) {
-    const bool separable = row_of(m).passes == sss_passes::separable;
+    const bool separable = row_of(m).passes() == sss_passes::separable;
     std::vector<gpu::material_block> material_data;
     std::vector<glm::vec4> kernel_taps(std::max<std::size_t>(s.materials.size(), 1) * EMCV_RENDER_MAX_SEPARABLE_TAPS,
                                        glm::vec4(0.0f));

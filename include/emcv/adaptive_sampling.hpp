@@ -43,6 +43,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <string_view>
 #include <type_traits>
 
 #include "detail/common.hpp"
@@ -56,6 +57,25 @@ enum class sampling_estimator {
     cv,       ///< EMCM over (f, G), the residual variance C_ff - C_fG^2 / C_GG (Eq. 31); state port::EmcvEmcm2
     cv_notex  ///< moving mean/variance of f - G (the control at alpha = 1); state port::EmcvMovingStats
 };
+
+/// The estimator's name, as the renderer's method (`emcv-demo --method`) spells it: "spvg", "cv", "cv-notex".
+inline const char* sampling_estimator_name(sampling_estimator e) noexcept {
+    switch (e) {
+        case sampling_estimator::spvg: return "spvg";
+        case sampling_estimator::cv: return "cv";
+        case sampling_estimator::cv_notex: return "cv-notex";
+    }
+    return "cv-notex";
+}
+
+/// The estimator a name spells: sampling_estimator_name's names, and "cv_notex" (a valid identifier, as the Python
+/// module spells it); nullopt for anything else.
+inline std::optional<sampling_estimator> parse_sampling_estimator(std::string_view name) noexcept {
+    for (const sampling_estimator e : {sampling_estimator::spvg, sampling_estimator::cv, sampling_estimator::cv_notex})
+        if (name == sampling_estimator_name(e)) return e;
+    if (name == "cv_notex") return sampling_estimator::cv_notex;
+    return std::nullopt;
+}
 
 /// How the per-sample variances become counts.
 enum class sampling_mode {

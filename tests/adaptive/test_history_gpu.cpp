@@ -185,7 +185,7 @@ struct harness {
         if (it == update_probes.end()) {
             emcv::gl::preprocess_options o = shader_options();
             o.defines.emplace_back("EMCV_HISTORY_BLOCK", std::to_string(block));
-            o.defines.emplace_back(std::string(emcv::demo::row_of(emcv::demo::method{k, 0}).adaptive_define), "1");
+            o.defines.emplace_back(std::string(emcv::demo::row_of(emcv::demo::method{k, 0}).adaptive_define()), "1");
             it = update_probes.emplace(std::make_pair(k, block), emcv::gl::program::compute(
                 emcv_test::shader_dir() / "adaptive/tests/update_probe.comp.glsl", o)).first;
         }

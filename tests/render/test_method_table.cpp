@@ -32,8 +32,16 @@ TEST_CASE("every method's name parses back to the method, and the parameters' ed
         const std::optional<method> back = parse_method(m.name());
         REQUIRE(back);
         CHECK(*back == m);
-        CHECK(is_adaptive(m) == (r.history != history_layout::none));
-        CHECK(r.alpha_heatmap == (r.history == history_layout::emcm2));
+        // an adaptive row's estimator decides its passes, layout, define and heatmaps, and they agree with the
+        // library's estimator and the port's layouts (cv's EMCM is the one layout that holds alpha)
+        CHECK(is_adaptive(m) == (r.history() != history_layout::none));
+        CHECK(is_adaptive(m) == (r.passes() == sss_passes::adaptive));
+        CHECK(is_adaptive(m) == !r.adaptive_define().empty());
+        if (r.estimator) {
+            CHECK(emcv::sampling_estimator_name(*r.estimator) == r.name);
+            CHECK(emcv::parse_sampling_estimator(r.name) == r.estimator);
+            CHECK((r.history() == history_layout::emcm2) == (*r.estimator == emcv::sampling_estimator::cv));
+        }
         // the summary's list of adaptive methods (emcv-demo's equal-time lines) names exactly the adaptive rows
         const std::vector<std::string> adaptive = adaptive_method_names();
         CHECK(std::count(adaptive.begin(), adaptive.end(), m.name()) == (is_adaptive(m) ? 1 : 0));
@@ -72,9 +80,9 @@ TEST_CASE("the planner lists each row's SSS passes, and only for a scene that ca
             return sss;
         };
         for (const auto& [passes, names] : expected)
-            if (row_of(m).passes == passes) CHECK(sss_of({}) == names);
+            if (row_of(m).passes() == passes) CHECK(sss_of({}) == names);
         // A budget adds the samples pass before an adaptive method's burley program, and nothing elsewhere.
-        if (row_of(m).passes == sss_passes::adaptive)
+        if (row_of(m).passes() == sss_passes::adaptive)
             CHECK(sss_of(budget) == std::vector<std::string>{"sss-adaptive-samples", "sss-burley"});
         else
             CHECK(sss_of(budget) == sss_of({}));

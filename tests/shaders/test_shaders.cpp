@@ -83,10 +83,10 @@ std::vector<std::vector<std::pair<std::string, std::string>>> method_defines(con
     std::vector<std::vector<std::pair<std::string, std::string>>> out;
     if (text.find("defined(EMCV_ADAPTIVE_SPVG)") != std::string::npos) out.emplace_back();
     for (const emcv::demo::method_row& r : emcv::demo::method_table()) {
-        if (r.adaptive_define.empty()) continue;
-        out.push_back({{std::string(r.adaptive_define), "1"}});
+        if (r.adaptive_define().empty()) continue;
+        out.push_back({{std::string(r.adaptive_define()), "1"}});
         if (text.find("defined(EMCV_ADAPTIVE_PLAN_NEXT)") != std::string::npos)
-            out.push_back({{std::string(r.adaptive_define), "1"}, {"EMCV_ADAPTIVE_PLAN_NEXT", "1"},
+            out.push_back({{std::string(r.adaptive_define()), "1"}, {"EMCV_ADAPTIVE_PLAN_NEXT", "1"},
                            {"EMCV_HISTORY_SPP_BUDGET", "8.0f"}});
     }
     return out;

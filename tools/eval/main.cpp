@@ -107,7 +107,7 @@ int run(const eval::options& o) {
             if (dump) {
                 const std::string stem = name + ".f" + std::to_string(frame);
                 write_csv(o.heatmap_dir / (stem + ".samples.csv"), renderers[i].sample_counts());
-                if (demo::row_of(o.methods[i]).alpha_heatmap)
+                if (demo::row_of(o.methods[i]).alpha_heatmap())
                     write_csv(o.heatmap_dir / (stem + ".alpha.csv"), renderers[i].cv_alpha());
                 write_csv(o.heatmap_dir / (stem + ".mask.csv"), renderers[i].sss_mask());
             }

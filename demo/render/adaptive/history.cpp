@@ -41,13 +41,13 @@ constexpr GLenum format_b = GL_RG32F;
 
 /// The shader options of the method's adaptive passes: the renderer's, plus the method's define.
 gl::preprocess_options with_method_define(gl::preprocess_options shaders, const method_row& row) {
-    shaders.defines.emplace_back(std::string(row.adaptive_define), "1");
+    shaders.defines.emplace_back(std::string(row.adaptive_define()), "1");
     return shaders;
 }
 
 history_layout checked_layout(const method& m) {
-    const history_layout l = row_of(m).history;
-    if (l == history_layout::none || row_of(m).adaptive_define.empty())
+    const history_layout l = row_of(m).history();
+    if (l == history_layout::none || row_of(m).adaptive_define().empty())
         throw std::invalid_argument("adaptive history: method " + m.name() + " keeps no history");
     return l;
 }
