@@ -41,7 +41,9 @@ bool list_scenes(std::ostream& out) {
 void list_methods(std::ostream& out) {
     static const char* const passes[] = {"none", "burley", "separable", "adaptive"};
     for (const method_row& r : method_table()) {
-        const std::string name = r.in_all >= 0 ? method{r.type, r.in_all}.name() : std::string(r.name);
+        // `all`'s value where the row is part of it, else "-N" where the name needs a parameter
+        const bool needs_n = !r.parameter.meaning.empty() && r.parameter.default_value == 0;
+        const std::string name = r.in_all >= 0 ? method{r.type, r.in_all}.name() : std::string(r.name) + (needs_n ? "-N" : "");
         out << name << '\t' << passes[static_cast<int>(r.passes())] << '\t' << r.help << '\n';
     }
 }

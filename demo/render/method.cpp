@@ -13,20 +13,23 @@ const std::vector<method_row>& method_table() {
     using e = emcv::sampling_estimator;
     static const std::vector<method_row> rows{
         {k::diffuse, "diffuse", "no scattering: the lit diffuse as it is (the lower bound of cost)", {}, 0,
-         sss_passes::none, std::nullopt},
+         sss_passes::none, std::nullopt, {}},
         {k::burley, "burley", "Burley screen-space SSS, a fixed N samples per SSS pixel",
-         {"samples per SSS pixel", 1, 1024, {}, 0, true}, 16, sss_passes::burley, std::nullopt},
+         {"samples per SSS pixel", 1, 1024, {}, 0, true}, 16, sss_passes::burley, std::nullopt, {}},
+        {k::burley_sobol, "burley-sobol",
+         "burley-N with scrambled Sobol' points instead of rotated R2 ones (stratified at every power of two)",
+         {"samples per SSS pixel", 1, 1024, {}, 0, true}, -1, sss_passes::burley, std::nullopt, "EMCV_BURLEY_SOBOL"},
         {k::separable, "separable", "separable SSS (two 1-D passes) with 11, 17 or 25 taps (default 17)",
          {"taps", 11, 25, {11, 17, 25}, default_separable_taps, true}, default_separable_taps,
-         sss_passes::separable, std::nullopt},
+         sss_passes::separable, std::nullopt, {}},
         {k::reference, "reference", "Burley with 1024 samples per pixel, reused while its inputs hold",
          {"samples per pixel", 1, 1 << 20, {}, default_reference_samples, false}, default_reference_samples,
-         sss_passes::burley, std::nullopt},
-        {k::spvg, "spvg", "adaptive: N from the moving variance of f (SPVG 2020)", {}, 0, sss_passes::none, e::spvg},
+         sss_passes::burley, std::nullopt, {}},
+        {k::spvg, "spvg", "adaptive: N from the moving variance of f (SPVG 2020)", {}, 0, sss_passes::none, e::spvg, {}},
         {k::cv, "cv", "adaptive: N from the residual variance of the control variate, EMCM over (f, G)", {}, 0,
-         sss_passes::none, e::cv},
+         sss_passes::none, e::cv, {}},
         {k::cv_notex, "cv-notex", "adaptive: N from the moving variance of f - G (alpha = 1)", {}, 0,
-         sss_passes::none, e::cv_notex},
+         sss_passes::none, e::cv_notex, {}},
     };
     return rows;
 }
@@ -34,6 +37,13 @@ const std::vector<method_row>& method_table() {
 history_layout method_row::history() const {
     if (!estimator) return history_layout::none;
     return *estimator == emcv::sampling_estimator::cv ? history_layout::emcm2 : history_layout::moving_stats;
+}
+
+std::vector<std::pair<std::string, std::string>> method_row::shader_defines() const {
+    std::vector<std::pair<std::string, std::string>> out;
+    if (!sample_define.empty()) out.emplace_back(std::string(sample_define), "1");
+    if (estimator) out.emplace_back(std::string(adaptive_define()), "1");
+    return out;
 }
 
 std::string_view method_row::adaptive_define() const {

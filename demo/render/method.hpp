@@ -14,7 +14,7 @@ namespace emcv::demo {
 
 /// A scattering method, as named on the command line (`--method`).
 struct method {
-    enum class kind { diffuse, burley, separable, reference, spvg, cv, cv_notex };
+    enum class kind { diffuse, burley, burley_sobol, separable, reference, spvg, cv, cv_notex };
     kind type = kind::diffuse;
     /// burley: samples per SSS pixel (1..1024); separable: taps (11, 17 or 25); reference: samples per pixel
     /// (>= 1024 unless a test asks for fewer, see make_reference); 0 for the others.
@@ -62,6 +62,8 @@ struct method_row {
     int in_all = -1;  ///< the parameter `--method all` renders it with; -1: not part of `all`
     sss_passes fixed_passes = sss_passes::none;  ///< the SSS passes of a method that is not adaptive
     std::optional<emcv::sampling_estimator> estimator;  ///< set: an adaptive method, choosing N with this estimator
+    /// The define that selects its sample sequence in the burley pass's taps (render/burley_taps.h); empty: R2
+    std::string_view sample_define;
 
     /// The SSS passes it records: sss_passes::adaptive for an adaptive method, else fixed_passes.
     sss_passes passes() const { return estimator ? sss_passes::adaptive : fixed_passes; }
@@ -69,6 +71,8 @@ struct method_row {
     history_layout history() const;
     /// The define that selects its formulas in the adaptive shaders ("EMCV_ADAPTIVE_CV", ...); empty if none.
     std::string_view adaptive_define() const;
+    /// The defines its burley program is built with: its sample sequence's and, adaptive, its method's.
+    std::vector<std::pair<std::string, std::string>> shader_defines() const;
     /// --out also writes samples-NNNN.png (N per pixel): every adaptive method.
     bool samples_heatmap() const { return estimator.has_value(); }
     /// --out also writes alpha-NNNN.png (the control-variate coefficient): the layout that holds C_fG / C_GG.

@@ -220,7 +220,14 @@ void prepare_pass_programs(pass_programs& p, const shader_setup& shaders, const 
         p.shadow = gl::program::graphics(dir / "shadow.vert.glsl", dir / "shadow.frag.glsl", pre);
     compute(p.lighting, "lighting.comp.glsl");
     // The adaptive methods' burley program is their history's (adaptive::history), built with their define.
-    if (row_of(m).passes() == sss_passes::burley) compute(p.burley, "sss_burley.comp.glsl");
+    if (row_of(m).passes() == sss_passes::burley) {
+        gl::program& burley = p.burley[std::string(row_of(m).sample_define)];
+        if (!burley.id()) {
+            gl::preprocess_options with = pre;
+            for (const auto& d : row_of(m).shader_defines()) with.defines.push_back(d);
+            burley = gl::program::compute(dir / "sss_burley.comp.glsl", with);
+        }
+    }
     if (row_of(m).passes() == sss_passes::separable) compute(p.separable, "sss_separable.comp.glsl");
     compute(p.composite, "composite.comp.glsl");
     if (resolve == resolve_mode::taa) compute(p.resolve, "resolve.comp.glsl");

@@ -5,6 +5,8 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <map>
+#include <string>
 #include <vector>
 
 #include "gl/handles.hpp"
@@ -28,8 +30,11 @@ inline constexpr int shadow_resolution = 1024;
 /// passes the scene and method can record are built (prepare_pass_programs); the others stay empty, and using
 /// one throws.
 struct pass_programs {
-    gl::program gbuffer, shadow, lighting, burley, separable, composite;
+    gl::program gbuffer, shadow, lighting, separable, composite;
     gl::program resolve;  ///< --resolve taa only
+    /// The burley pass of burley-N, the reference and their variants, one program per sample sequence: keyed by
+    /// the method row's sample_define ("" for R2), built with its shader_defines().
+    std::map<std::string, gl::program> burley;
 };
 
 /// The shader options every pass is built with: include roots (render_options, else $EMCV_SHADER_DIR /

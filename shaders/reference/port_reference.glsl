@@ -143,6 +143,7 @@ void main() {
                                                 float(EMCV_HISTORY_N_MAX));
     const uint lambda_span = emcv_budget_lambda_high_bits() - emcv_budget_lambda_low_bits();
     const float hashed = emcv_uint_to_unit_float(emcv_pcg(index)) + emcv_hammersley(index, width).y + notex.mean +
+                         emcv_sss_sample_uv_sobol(index, rotation).x +
                          emcv_burley_sample_exact(emcv_r2(index).x, 1.0f) + emcv_burley_cdf(1.0f, 1.0f) +
                          emcv_burley_profile(1.0f, 1.0f) + emcv_bits_float(emcv_float_bits(share)) +
                          emcv_cv_residual_variance(cov.cov.x, cov.cov.y, cov.cov.z, alpha) +

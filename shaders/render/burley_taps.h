@@ -37,7 +37,11 @@ bool emcv_render_burley_tap(ivec2 p, EmcvBurleyPixel px, uint i, vec2 rotation, 
                             out vec3 l) {
     w = vec3(0.0f);
     l = vec3(0.0f);
+#if defined(EMCV_BURLEY_SOBOL)  // burley-sobol-N (its row of the method table): scrambled Sobol' points
+    vec2 u = emcv_sss_sample_uv_sobol(i, rotation);
+#else
     vec2 u = emcv_sss_sample_uv(i, rotation);
+#endif
     float r = emcv_sss_sample_radius(u.x, px.d_sample, approximate);
     vec2 offset = emcv_sss_offset_pixels(r, u.y, px.pixels_per_mm);
     ivec2 q = ivec2(floor(vec2(p) + 0.5f + offset));

@@ -253,8 +253,10 @@ TEST_CASE("list-methods prints the method table: name, SSS passes, help", "[app]
         names.push_back(line.substr(0, a));
         passes.push_back(line.substr(a + 1, b - a - 1));
     }
-    CHECK(names == std::vector<std::string>{"diffuse", "burley-16", "separable-17", "reference", "spvg", "cv", "cv-notex"});
-    CHECK(passes == std::vector<std::string>{"none", "burley", "separable", "burley", "adaptive", "adaptive", "adaptive"});
+    CHECK(names == std::vector<std::string>{"diffuse", "burley-16", "burley-sobol-N", "separable-17", "reference", "spvg",
+                                            "cv", "cv-notex"});
+    CHECK(passes == std::vector<std::string>{"none", "burley", "burley", "separable", "burley", "adaptive", "adaptive",
+                                             "adaptive"});
 }
 
 TEST_CASE("a small headless run writes frames and complete metrics files", "[app][cli][gl][image-files]") {

@@ -5,6 +5,7 @@
 #include <catch2/catch_test_macros.hpp>
 
 #include <array>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -20,6 +21,7 @@
 #include <emcv/port/ema.h>
 #include <emcv/port/hash.h>
 #include <emcv/port/samples.h>
+#include <emcv/port/sss.h>
 
 namespace port = emcv::port;
 
@@ -197,6 +199,43 @@ TEST_CASE("Burley: SPVG's approximation starts at 0, is monotone, and is exact i
                          static_cast<double>(port::emcv_burley_sample_exact(u, 1.0f));
     CHECK(ratio > 2.5715 / 3.0);
     CHECK(ratio < 1.0);
+}
+
+TEST_CASE("Sobol's first two dimensions are a (0, 2)-sequence, and the pixel's scrambling keeps it one") {
+    // A (0, 2)-sequence in base 2: for every k, each block of 2^k points from a multiple of 2^k puts exactly one
+    // point in each elementary interval [a 2^-j, (a + 1) 2^-j) x [b 2^-(k-j), (b + 1) 2^-(k-j)), j = 0..k.
+    // XOR-ing every point's bits with one fixed word (a random digit scrambling) maps each elementary interval onto
+    // another of the same shape, so the scrambled points keep the property.
+    const glm::vec2 rotation(0.3141592f, 0.7182818f);
+    for (const bool scrambled : {false, true}) {
+        for (std::uint32_t k = 0; k <= 8; ++k) {
+            const std::uint32_t count = 1u << k;
+            for (std::uint32_t first : {0u, count, 5u * count}) {
+                for (std::uint32_t j = 0; j <= k; ++j) {
+                    std::vector<int> cells(count, 0);
+                    for (std::uint32_t n = first; n < first + count; ++n) {
+                        const glm::vec2 u = scrambled ? port::emcv_sss_sample_uv_sobol(n, rotation)
+                                                      : glm::vec2(port::emcv_uint_to_unit_float(port::emcv_sobol2_bits(n).x),
+                                                                  port::emcv_uint_to_unit_float(port::emcv_sobol2_bits(n).y));
+                        REQUIRE(u.x >= 0.0f);
+                        REQUIRE(u.x < 1.0f);
+                        REQUIRE(u.y >= 0.0f);
+                        REQUIRE(u.y < 1.0f);
+                        const auto a = static_cast<std::uint32_t>(u.x * float(1u << j));
+                        const auto b = static_cast<std::uint32_t>(u.y * float(1u << (k - j)));
+                        ++cells[(a << (k - j)) | b];
+                    }
+                    INFO("scrambled " << scrambled << ", 2^" << k << " points from " << first << ", intervals 2^-" << j
+                                      << " x 2^-" << (k - j));
+                    CHECK(std::count(cells.begin(), cells.end(), 1) == static_cast<long>(count));
+                }
+            }
+        }
+    }
+    // the first dimension is the radical inverse (van der Corput): 1, 2, 3 -> 1/2, 1/4, 3/4
+    CHECK(port::emcv_sobol2_bits(1u).x == 0x80000000u);
+    CHECK(port::emcv_sobol2_bits(2u).x == 0x40000000u);
+    CHECK(port::emcv_sobol2_bits(3u).x == 0xc0000000u);
 }
 
 TEST_CASE("hash and low-discrepancy helpers") {

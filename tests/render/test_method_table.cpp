@@ -28,7 +28,10 @@ using Catch::Matchers::ContainsSubstring;
 TEST_CASE("every method's name parses back to the method, and the parameters' edges are enforced") {
     for (const method_row& r : method_table()) {
         INFO("row " << r.name);
-        const method m{r.type, r.in_all >= 0 ? r.in_all : r.parameter.default_value};
+        // `all`'s value, else the bare name's, else the smallest the parameter takes
+        const method m{r.type, r.in_all >= 0                    ? r.in_all
+                               : r.parameter.default_value != 0 ? r.parameter.default_value
+                                                                : r.parameter.minimum};
         const std::optional<method> back = parse_method(m.name());
         REQUIRE(back);
         CHECK(*back == m);
@@ -59,7 +62,8 @@ TEST_CASE("every method's name parses back to the method, and the parameters' ed
     CHECK_FALSE(parse_method("cv-"));
     CHECK(make_reference(256).name() == "reference-256");
     CHECK(accepted_method_names() ==
-          "diffuse, burley-N (N = 1..1024), separable[-11|-17|-25], reference, spvg, cv, cv-notex");
+          "diffuse, burley-N (N = 1..1024), burley-sobol-N (N = 1..1024), separable[-11|-17|-25], reference, spvg, cv, "
+          "cv-notex");
 }
 
 TEST_CASE("the planner lists each row's SSS passes, and only for a scene that calls for them") {

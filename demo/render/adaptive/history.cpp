@@ -41,7 +41,7 @@ constexpr GLenum format_b = GL_RG32F;
 
 /// The shader options of the method's adaptive passes: the renderer's, plus the method's define.
 gl::preprocess_options with_method_define(gl::preprocess_options shaders, const method_row& row) {
-    shaders.defines.emplace_back(std::string(row.adaptive_define()), "1");
+    for (const auto& d : row.shader_defines()) shaders.defines.push_back(d);
     return shaders;
 }
 

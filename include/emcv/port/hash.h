@@ -28,6 +28,24 @@ EMCV_FN float emcv_uint_to_unit_float(uint x) {
     return float(x >> 8u) * (1.0f / 16777216.0f);
 }
 
+/// Point n of the first two dimensions of Sobol's sequence as 0.32 fixed point: the bits of n reversed (van der
+/// Corput) and Sobol's second dimension (direction numbers v_k = v_(k-1) ^ (v_(k-1) >> 1), v_0 = 2^31). Together a
+/// (0, 2)-sequence in base 2: every 2^k consecutive points from a multiple of 2^k put one point in each elementary
+/// interval of area 2^-k. Bit operations only: the same bits in C++ and GLSL.
+EMCV_FN uvec2 emcv_sobol2_bits(uint n) {
+    uint x = 0u;
+    uint y = 0u;
+    uint v = 2147483648u;
+    for (uint k = 0u; k < 32u; ++k) {
+        if ((n & (1u << k)) != 0u) {
+            x ^= 2147483648u >> k;
+            y ^= v;
+        }
+        v ^= v >> 1u;
+    }
+    return uvec2(x, y);
+}
+
 /// Point n of the R2 sequence, in [0, 1)^2 (0.32 fixed point: 2^32/g = 3242174889, 2^32/g^2 = 2447445414).
 EMCV_FN vec2 emcv_r2(uint n) {
     uint x = 2147483648u + n * 3242174889u;

@@ -64,6 +64,16 @@ EMCV_FN vec2 emcv_sss_sample_uv(uint i, vec2 rotation) {
     return p - floor(p);
 }
 
+/// Sample i's (u_r, u_theta) in [0, 1)^2 for `burley-sobol-N`: Sobol's (0, 2)-sequence (emcv_sobol2_bits) with its
+/// bits XOR-scrambled by the pixel's `rotation` (its 24 bits, emcv_sss_rotation): a random digit scrambling, which
+/// keeps every elementary interval's one point (the stratification) where R2's rotation keeps only its low
+/// discrepancy.
+EMCV_FN vec2 emcv_sss_sample_uv_sobol(uint i, vec2 rotation) {
+    uvec2 scramble = uvec2(uint(rotation.x * 16777216.0f) << 8u, uint(rotation.y * 16777216.0f) << 8u);
+    uvec2 bits = emcv_sobol2_bits(i) ^ scramble;
+    return vec2(emcv_uint_to_unit_float(bits.x), emcv_uint_to_unit_float(bits.y));
+}
+
 /// A radius (mm) with pdf p(r; d): the exact inverse CDF, or SPVG's approximation when `approximate`
 /// (whose true density differs slightly: the weight still divides by the exact pdf, docs/frame.md).
 EMCV_FN float emcv_sss_sample_radius(float u, float d, bool approximate) {
