@@ -2,6 +2,8 @@
 // The method table (method.hpp) and what derives from it: names, parsing, `all`, help lines.
 #include "method.hpp"
 
+#include <emcv/adaptive_sampling.hpp>
+
 #include <algorithm>
 #include <charconv>
 #include <stdexcept>

@@ -8,7 +8,11 @@
 #include <string_view>
 #include <vector>
 
-#include <emcv/adaptive_sampling.hpp>
+namespace emcv {
+// The library's estimator (include/emcv/adaptive_sampling.hpp), declared opaquely: a scoped enum with its default
+// underlying type is complete here, and this header stays light for the renderer's many sources.
+enum class sampling_estimator;
+}  // namespace emcv
 
 namespace emcv::demo {
 

@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include <emcv/adaptive_sampling.hpp>
+
 #include "../gpu/gl_test_support.hpp"
 #include "gl/debug.hpp"
 #include "render/renderer.hpp"
