@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -34,7 +35,7 @@ struct pass_programs {
     gl::program resolve;  ///< --resolve taa only
     /// The burley pass of burley-N, the reference and their variants, one program per sample sequence: keyed by
     /// the method row's sample_define ("" for R2), built with its shader_defines().
-    std::map<std::string, gl::program> burley;
+    std::map<std::string, gl::program, std::less<>> burley;
 };
 
 /// The shader options every pass is built with: include roots (render_options, else $EMCV_SHADER_DIR /

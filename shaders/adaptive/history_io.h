@@ -14,8 +14,9 @@
 #include "render/gbuffer_read.h"
 
 // The history layout of the method (its row of the method table: history_layout), the one place that chooses
-// between them: its images, EmcvAdaptiveState and the functions every pass calls (init, decode, store, blend,
-// sigma2, effective frames, the sub-pixel test, the push and the noise-test hooks).
+// between them: its images, EmcvAdaptiveState, its weight EMCV_ADAPTIVE_ETA, whether it has the noise test
+// (EMCV_ADAPTIVE_NOISE_TEST), and the functions every pass calls (init, decode, store, blend, sigma2, the sub-pixel
+// test, the push and the noise-test hooks).
 #if defined(EMCV_ADAPTIVE_CV)
 #include "adaptive/layout_emcm2.h"
 #elif defined(EMCV_ADAPTIVE_SPVG) || defined(EMCV_ADAPTIVE_NOTEX)
@@ -25,6 +26,12 @@
 #endif
 
 layout(r32ui, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_SAMPLES)) uniform uimage2D samples_image;
+
+/// The effective frames a history's per-sample variance rests on (emcv_history_effective_frames at its layout's
+/// eta).
+float emcv_adaptive_effective_frames(EmcvAdaptiveState s) {
+    return emcv_history_effective_frames(s.count, EMCV_ADAPTIVE_ETA);
+}
 
 // The statistics' grain (emcv/port/history.h, EMCV_HISTORY_BLOCK): the history, the samples image and every
 // count are one texel per K x K block of pixels; an 8x8 tile holds EMCV_ADAPTIVE_TILE_BLOCKS of them.
@@ -206,8 +213,10 @@ void emcv_adaptive_update_tile(uint local, ivec2 origin, vec3 scattered, vec3 un
         }
         emcv_adaptive_noise_add(s, f, g, batch);  // cv's noise test (layout_emcm2.h); the others add nothing
     }
+#if EMCV_ADAPTIVE_NOISE_TEST
     memoryBarrierShared();
     barrier();  // the tile's noise pool is complete
+#endif
     if (emcv_adaptive_holds_block()) emcv_adaptive_update(texel, s, f, g, batch, emcv_adaptive_noise_ratio());
 }
 #endif

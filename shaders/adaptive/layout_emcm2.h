@@ -12,6 +12,8 @@ layout(rgba32f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_A)) coherent
 layout(rg32f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_B)) coherent uniform image2D history_b;
 layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_HISTORY_PREV_B)) uniform sampler2D history_prev_b;
 #define EmcvAdaptiveState EmcvEmcm2
+#define EMCV_ADAPTIVE_ETA EMCV_HISTORY_ETA_EMCM  // the EMCM's weight
+#define EMCV_ADAPTIVE_NOISE_TEST 1               // the tile's noise test before the push (below)
 
 /// A fresh (reset) state.
 EmcvAdaptiveState emcv_adaptive_init() { return emcv_emcm2_init(); }
@@ -50,12 +52,7 @@ void emcv_adaptive_blend_finish(inout EmcvAdaptiveState s, EmcvAdaptiveState ble
 }
 
 /// The residual's per-sample variance at the EMCM's alpha (emcv_history_no_variance() before two frames).
-float emcv_adaptive_sigma2(EmcvAdaptiveState s) { return emcv_history_sigma2_cv(s, EMCV_HISTORY_ETA_EMCM); }
-
-/// The effective frames that variance rests on (emcv_history_effective_frames at the EMCM's eta).
-float emcv_adaptive_effective_frames(EmcvAdaptiveState s) {
-    return emcv_history_effective_frames(s.count, EMCV_HISTORY_ETA_EMCM);
-}
+float emcv_adaptive_sigma2(EmcvAdaptiveState s) { return emcv_history_sigma2_cv(s, EMCV_ADAPTIVE_ETA); }
 
 /// Whether a kernel whose widest channel has shape distance `widest_d` (mm) covers under a pixel at
 /// `pixels_per_mm`: there the control stands in for the scattered value and the block takes no samples.
@@ -66,7 +63,7 @@ bool emcv_adaptive_sub_pixel_kernel(float widest_d, float pixels_per_mm) {
 /// The push of a block's batch (emcv_history_push_cv: a change the control does not explain clipped), then its
 /// comoments scaled by the tile's noise test (emcv_history_rescale_cv).
 void emcv_adaptive_push(inout EmcvAdaptiveState s, float f, float g, float batch, float noise_ratio) {
-    emcv_history_push_cv(s, f, g, EMCV_HISTORY_ETA_EMCM, batch);
+    emcv_history_push_cv(s, f, g, EMCV_ADAPTIVE_ETA, batch);
     emcv_history_rescale_cv(s, noise_ratio);
 }
 
@@ -83,7 +80,7 @@ void emcv_adaptive_noise_clear(uint local) {
 /// Adds a block's noise-test term before its push (emcv_history_noise_term) and the term's relative variance to
 /// the tile's pool, where it has one (a history as old as its memory, a batch taken).
 void emcv_adaptive_noise_add(EmcvAdaptiveState s, float f, float g, float batch) {
-    float term = batch > 0.0f ? emcv_history_noise_term(s, f, g, EMCV_HISTORY_ETA_EMCM, batch) : emcv_history_no_variance();
+    float term = batch > 0.0f ? emcv_history_noise_term(s, f, g, EMCV_ADAPTIVE_ETA, batch) : emcv_history_no_variance();
     uvec3 own = uvec3(0u);
     emcv_history_noise_add(own, term, emcv_history_noise_relative(max(batch, 1.0f)));
     if (own.z != 0u) {

@@ -10,6 +10,8 @@
 // Coherent: as layout_emcm2.h's.
 layout(rgba16f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_A)) coherent uniform image2D history_a;
 #define EmcvAdaptiveState EmcvMovingStats
+#define EMCV_ADAPTIVE_ETA EMCV_HISTORY_ETA_MOVING  // the moving statistics' weight
+#define EMCV_ADAPTIVE_NOISE_TEST 0                 // no noise test: the hooks below do nothing
 
 /// A fresh (reset) state.
 EmcvAdaptiveState emcv_adaptive_init() { return emcv_moving_stats_init(); }
@@ -40,12 +42,7 @@ void emcv_adaptive_blend_finish(inout EmcvAdaptiveState s, EmcvAdaptiveState ble
 }
 
 /// The scalar's per-sample variance (emcv_history_no_variance() before two frames).
-float emcv_adaptive_sigma2(EmcvAdaptiveState s) { return emcv_history_sigma2_moving(s, EMCV_HISTORY_ETA_MOVING); }
-
-/// The effective frames that variance rests on (emcv_history_effective_frames at the moving statistics' eta).
-float emcv_adaptive_effective_frames(EmcvAdaptiveState s) {
-    return emcv_history_effective_frames(s.count, EMCV_HISTORY_ETA_MOVING);
-}
+float emcv_adaptive_sigma2(EmcvAdaptiveState s) { return emcv_history_sigma2_moving(s, EMCV_ADAPTIVE_ETA); }
 
 /// Whether a kernel whose widest channel has shape distance `widest_d` (mm) covers under a pixel at
 /// `pixels_per_mm`, where cv-notex takes no samples (its control stands in for the scattered value); spvg never
@@ -62,9 +59,9 @@ bool emcv_adaptive_sub_pixel_kernel(float widest_d, float pixels_per_mm) {
 /// (emcv_history_push_notex), spvg f itself (emcv_moving_stats_push_batch). No noise test: noise_ratio is 1.
 void emcv_adaptive_push(inout EmcvAdaptiveState s, float f, float g, float batch, float noise_ratio) {
 #if defined(EMCV_ADAPTIVE_NOTEX)
-    emcv_history_push_notex(s, f, g, EMCV_HISTORY_ETA_MOVING, batch);
+    emcv_history_push_notex(s, f, g, EMCV_ADAPTIVE_ETA, batch);
 #else
-    emcv_moving_stats_push_batch(s, f, EMCV_HISTORY_ETA_MOVING, batch);
+    emcv_moving_stats_push_batch(s, f, EMCV_ADAPTIVE_ETA, batch);
 #endif
 }
 

@@ -47,7 +47,7 @@ gl::preprocess_options with_method_define(gl::preprocess_options shaders, const 
 
 history_layout checked_layout(const method& m) {
     const history_layout l = row_of(m).history();
-    if (l == history_layout::none || row_of(m).adaptive_define().empty())
+    if (l == history_layout::none)
         throw std::invalid_argument("adaptive history: method " + m.name() + " keeps no history");
     return l;
 }
