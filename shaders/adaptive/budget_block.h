@@ -1,9 +1,7 @@
 // SPDX-License-Identifier: MIT
-// shaders/adaptive/budget_block.h — the budget's storage block (emcv/port/budget.h's EmcvBudgetBlock) as the
-// adaptive passes see it: the frame's histogram that the planning passes add their blocks to (emcv_budget_add),
-// and for the solve pass after them (adaptive/budget_solve.comp.glsl, EMCV_BUDGET_GROUP_THREADS defined) the
-// solve on the frame's histogram, which also stores the next frame's shrinkage prior from the histogram of the
-// unshrunk variances (emcv_history_frame_prior).
+// shaders/adaptive/budget_block.h — the renderer's side of the installed module module/emcv_adaptive_budget.glsl:
+// its budget block at the renderer's binding (adaptive/bindings.h). The solve pass (adaptive/budget_solve.comp.glsl)
+// defines EMCV_BUDGET_GROUP_THREADS before including it.
 #ifndef EMCV_ADAPTIVE_BUDGET_BLOCK_H
 #define EMCV_ADAPTIVE_BUDGET_BLOCK_H
 
@@ -14,137 +12,7 @@
 layout(std430, EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_BUDGET)) buffer Budget {
     EmcvBudgetBlock budget;
 };
-
-/// Adds a block's per-sample variance (or its no-variance / no-samples code, history.h) to the frame's histogram,
-/// once for each of its `pixels` scattering pixels (every pixel of a block takes the block's N: the budget counts
-/// pixels, emcv/port/history.h, emcv_history_block_batch): global atomics, integer sums that are the same in any
-/// order, so the histogram is emcv::budget_add's in C++ (a pixel at a time) bit for bit. A block adds its own
-/// (a tile holds 4 of them at K = 4, 16 at K = 2): no workgroup histogram to clear and flush, which on llvmpipe
-/// cost every workgroup a walk over all the bins.
-void emcv_budget_add(float sigma2, uint pixels) {
-    if (sigma2 == emcv_history_no_samples()) {
-        atomicAdd(budget.zero_pixels, pixels);
-    } else if (!(sigma2 >= 0.0f)) {
-        atomicAdd(budget.default_pixels, pixels);
-    } else {
-        float sigma = sqrt(sigma2);
-        uint bin = emcv_budget_bin(sigma);
-        atomicAdd(budget.bin_count[bin], pixels);
-        atomicAdd(budget.bin_fraction[bin], pixels * emcv_budget_fraction(sigma));
-    }
-}
-
-/// Adds a block's pooled variance before shrinkage and its pooled effective frames, once for each of its `pixels`,
-/// to the statistics the next frame shrinks towards (a code, or no frames, adds nothing; emcv::budget_add_raw in
-/// C++, a pixel at a time).
-void emcv_budget_add_raw(float sigma2, float frames, uint pixels) {
-    if (!(sigma2 >= 0.0f) || !(frames > 0.0f)) return;
-    atomicAdd(budget.raw_count[emcv_budget_bin(sqrt(sigma2))], pixels);
-    atomicAdd(budget.raw_inverse_frames, pixels * emcv_history_inverse_frames_units(frames));
-}
-
-#if defined(EMCV_BUDGET_GROUP_THREADS)
-// The solve, run by the solve pass's one workgroup (EMCV_BUDGET_GROUP_THREADS threads, a power of two that
-// divides EMCV_BUDGET_BINS): the smallest bit pattern of lambda in the open interval between
-// emcv_budget_lambda_low_bits and _high_bits whose planned samples sum_i clamp(lambda sigma_i, N_MIN, N_MAX),
-// added over the bins in bin order, reach B (histogram pixels + sub-pixel pixels), the high bound when none
-// does: what emcv::budget_solve's bisection finds in C++ (the same bits). The total is monotone in lambda, so
-// instead of bisecting (one barrier-bound reduction per halving) every thread evaluates one of `threads`
-// candidates over all the bins each round, which narrows the interval 65-fold: five rounds and a last one.
-#define EMCV_BUDGET_BINS_PER_THREAD (EMCV_BUDGET_BINS / EMCV_BUDGET_GROUP_THREADS)
-// The frame's bins as the solve reads them (counts, and sums of sigma as float bits).
-shared uint emcv_budget_group_count[EMCV_BUDGET_BINS];
-shared uint emcv_budget_group_fraction[EMCV_BUDGET_BINS];
-shared uint emcv_budget_group_zero;
-shared vec3 emcv_budget_moments[EMCV_BUDGET_GROUP_THREADS];  // per thread, for the next frame's prior
-shared vec2 emcv_budget_prior;                                   // (mean, tau^2), stored with lambda
-shared uint emcv_budget_group_default;
-shared uint emcv_budget_below;  // candidates of the round whose total falls short of the plan
-shared uint emcv_budget_nonempty;  // the frame's non-empty bins, packed in bin order at the front of the arrays
-
-/// The frame's planned samples at scale lambda: the non-empty bins added in bin order (the empty ones would add
-/// exactly 0).
-float emcv_budget_total(float lambda, float n_min, float n_max) {
-    EMCV_PRECISE float total = 0.0f;
-    for (uint i = 0u; i < emcv_budget_nonempty; ++i)
-        total += emcv_budget_bin_samples(lambda, uintBitsToFloat(emcv_budget_group_fraction[i]),
-                                         emcv_budget_group_count[i], n_min, n_max);
-    return total;
-}
-
-/// The solve, one workgroup of EMCV_BUDGET_GROUP_THREADS threads dispatched after the pass whose blocks added to
-/// the frame's histogram (adaptive/budget_solve.comp.glsl; the renderer's memory barrier orders it after their
-/// atomics): reads the frame's histogram and clears it, solves lambda for the burley pass that spends it,
-/// stores the next frame's prior and resets the block's counters. Every thread calls it (it has barriers).
-void emcv_budget_solve(uint thread) {
-    // The frame's bins into shared memory: count, and the bin's sum of sigma (as bits, in the fraction array);
-    // then the non-empty ones packed in bin order at the front (a frame fills a few tens of the 256).
-    for (uint k = 0u; k < uint(EMCV_BUDGET_BINS_PER_THREAD); ++k) {
-        uint bin = thread + k * uint(EMCV_BUDGET_GROUP_THREADS);
-        uint count = atomicExchange(budget.bin_count[bin], 0u);
-        uint fraction = atomicExchange(budget.bin_fraction[bin], 0u);
-        emcv_budget_group_count[bin] = count;
-        emcv_budget_group_fraction[bin] = floatBitsToUint(emcv_budget_bin_sum(bin, count, fraction));
-    }
-    if (thread == 0u) emcv_budget_group_zero = atomicExchange(budget.zero_pixels, 0u);
-    {  // the next frame's prior (emcv_history_frame_prior): each thread's bins, then thread 0 adds the threads
-        vec3 moments = vec3(0.0f);
-        for (uint k = 0u; k < uint(EMCV_BUDGET_BINS_PER_THREAD); ++k) {
-            uint bin = thread + k * uint(EMCV_BUDGET_GROUP_THREADS);
-            moments = emcv_history_moments_add(moments, bin, atomicExchange(budget.raw_count[bin], 0u));
-        }
-        emcv_budget_moments[thread] = moments;
-    }
-    barrier();
-    if (thread == 0u) {
-        vec3 moments = vec3(0.0f);
-        for (uint t = 0u; t < uint(EMCV_BUDGET_GROUP_THREADS); ++t) moments += emcv_budget_moments[t];
-        emcv_budget_prior = emcv_history_frame_prior(moments, atomicExchange(budget.raw_inverse_frames, 0u),
-                                                     emcv_history_spend_relative_variance());
-    }
-    barrier();
-    uint histogram_pixels = 0u;
-    if (thread == 0u) {
-        uint stored = 0u;
-        for (uint bin = 0u; bin < uint(EMCV_BUDGET_BINS); ++bin) {
-            uint count = emcv_budget_group_count[bin];
-            if (count == 0u) continue;
-            emcv_budget_group_count[stored] = count;  // stored <= bin: never overwrites a bin not yet read
-            emcv_budget_group_fraction[stored] = emcv_budget_group_fraction[bin];
-            ++stored;
-            histogram_pixels += count;
-        }
-        emcv_budget_nonempty = stored;
-        emcv_budget_group_default = histogram_pixels;  // handed to the other threads
-    }
-    barrier();
-    histogram_pixels = emcv_budget_group_default;
-    EMCV_PRECISE float planned = float(EMCV_HISTORY_SPP_BUDGET) * float(histogram_pixels + emcv_budget_group_zero);
-    float n_min = float(EMCV_HISTORY_N_MIN), n_max = float(EMCV_HISTORY_N_MAX);
-    uint low = emcv_budget_lambda_low_bits(), high = emcv_budget_lambda_high_bits();
-    while (high - low > 1u) {  // the same bounds in every thread: uniform
-        uint step = max((high - low) / uint(EMCV_BUDGET_GROUP_THREADS + 1), 1u);
-        if (thread == 0u) emcv_budget_below = 0u;
-        barrier();
-        uint candidate = low + step * (thread + 1u);  // increasing with the thread; never past 2^32 (see above)
-        if (candidate < high && emcv_budget_total(emcv_bits_float(candidate), n_min, n_max) < planned)
-            atomicAdd(emcv_budget_below, 1u);
-        barrier();
-        uint below = emcv_budget_below;  // the total is monotone: the first `below` candidates fall short
-        barrier();                       // everyone has read it before the next round clears it
-        uint next_high = low + step * (below + 1u);
-        if (below > 0u) low = low + step * below;
-        if (next_high < high) high = next_high;
-    }
-    if (thread == 0u) {
-        budget.lambda = emcv_bits_float(high);
-        budget.planned = planned;
-        budget.mean_sigma2 = emcv_budget_prior.x;
-        budget.between_variance = emcv_budget_prior.y;
-        atomicExchange(budget.default_pixels, 0u);
-        budget.solves += 1u;
-    }
-}
-#endif  // defined(EMCV_BUDGET_GROUP_THREADS)
+#define EMCV_APP_BUDGET budget
+#include "module/emcv_adaptive_budget.glsl"
 
 #endif  // #ifndef EMCV_ADAPTIVE_BUDGET_BLOCK_H

@@ -52,7 +52,7 @@ bool pending_sub_pixel = false;
 #endif
 
 #if defined(EMCV_BURLEY_ADAPTIVE)
-uint planned_count = 0u;  // quality target: this invocation's N, planned at the top of main (plan_quality_count)
+uint planned_count = 0u;  // quality target: this invocation's N, planned at the top of main (emcv_adaptive_quality_count)
 ivec2 tile_origin = ivec2(-1);  // the tile's pixel (0, 0) (emcv_adaptive_tile_origin), set at the top of main
 uint assigned_count = 0u;  // the N of the pixel this invocation samples (sort_tile_by_count)
 uint assigned_local = 0u;  // that pixel's local index in the tile (sort_tile_by_count)
@@ -63,38 +63,11 @@ shared uint sort_offset[SORT_KEYS];
 shared uint sort_pixel[SORT_KEYS];
 shared uint sort_count[SORT_KEYS];
 
-// Quality target: each block's N, planned by the invocation that holds the block (plan_quality_count).
-shared uint tile_planned[EMCV_ADAPTIVE_TILE_BLOCKS];
-
-/// Quality target: reprojects the tile's block histories into this frame's, pools their per-sample variances over
-/// the tile (adaptive/samples.h) and plans each block's N = the count that brings it to the target
-/// (emcv_history_count_target), which pixel p takes. Every invocation calls it, in uniform control flow (the
-/// tile's variances meet behind barriers).
-void plan_quality_count(ivec2 p) {
-    emcv_adaptive_share_pixel_of(p);
-    EmcvAdaptiveBlock blk;
-    float own, frames;
-    emcv_adaptive_tile_sigma2(tile_origin, blk, own, frames);
-    if (emcv_adaptive_holds_block()) {
-        uint j = gl_LocalInvocationIndex;
-        float pooled_frames;
-        tile_planned[j] = blk.code == 0u ? 0u
-                        : uint(emcv_history_count_target(emcv_adaptive_pooled_sigma2(j, own, blk.code, pooled_frames)));
-    }
-    barrier();
-    ivec2 l = ivec2(gl_LocalInvocationID.xy) / EMCV_HISTORY_BLOCK;
-    planned_count = tile_planned[l.x + l.y * EMCV_ADAPTIVE_TILE_BLOCKS_SIDE];
-}
-
-/// The pixel's N, its block's: under a quality target the one this pass planned; in budget mode the
-/// adaptive-samples pass leaves the block's per-sample variance and N = clamp(lambda sigma) is taken here, with the
-/// lambda the solve pass after it solved from the same frame's variances, rounded with the block's number (every
-/// pixel of a block takes the same N).
+/// The pixel's N, its block's: under a quality target the one planned at the top of main
+/// (emcv_adaptive_quality_count); in budget mode from the samples pass's variance and the solved lambda
+/// (emcv_adaptive_budget_count).
 uint adaptive_count(ivec2 p) {
-    if (!emcv_history_budget_mode()) return planned_count;
-    ivec2 texel = p / EMCV_HISTORY_BLOCK;
-    float u = emcv_budget_u(uint(texel.x), uint(texel.y), frame.counters.x, frame.counters.y);
-    return uint(emcv_history_count_spend(uintBitsToFloat(imageLoad(samples_image, texel).x), budget.lambda, u));
+    return emcv_history_budget_mode() ? emcv_adaptive_budget_count(p, frame.counters.x, frame.counters.y) : planned_count;
 }
 
 /// Hands the tile's pixels to its threads in order of N: this invocation's pixel p (its own on entry, 0 samples
@@ -228,12 +201,15 @@ void main() {
     ivec2 p = emcv_render_tile_pixel();
 #if defined(EMCV_BURLEY_ADAPTIVE)
     tile_origin = emcv_adaptive_tile_origin(p);
-    if (!emcv_history_budget_mode()) plan_quality_count(p);
+    if (!emcv_history_budget_mode()) {
+        emcv_adaptive_share_pixel_of(p);
+        planned_count = emcv_adaptive_quality_count(tile_origin);
+    }
     sort_tile_by_count(p);
 #endif
     uint n = scatter(p);
 #if defined(EMCV_BURLEY_ADAPTIVE)
-    emcv_adaptive_update_tile(assigned_local, tile_origin, pending_scattered, pending_unscattered, pending_albedo, n);
+    emcv_adaptive_update_tile_diffuse(assigned_local, tile_origin, pending_scattered, pending_unscattered, pending_albedo, n);
 #endif
     // Sample statistics reduced per tile in shared memory, then one global atomic per tile (not per pixel).
     atomicAdd(tile_sample_sum, n);

@@ -23,5 +23,5 @@ void main() {
     vec3 scattered = scatters ? texelFetch(scattered_diffuse, p, 0).xyz : vec3(0.0f);
     vec3 unscattered = scatters ? texelFetch(lit_diffuse, p, 0).xyz : vec3(0.0f);
     vec3 albedo = scatters ? texelFetch(gbuffer_albedo, p, 0).xyz : vec3(0.0f);
-    emcv_adaptive_update_tile(gl_LocalInvocationIndex, emcv_adaptive_tile_origin(p), scattered, unscattered, albedo, n);
+    emcv_adaptive_update_tile_diffuse(gl_LocalInvocationIndex, emcv_adaptive_tile_origin(p), scattered, unscattered, albedo, n);
 }

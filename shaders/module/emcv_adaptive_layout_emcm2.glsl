@@ -1,16 +1,16 @@
 // SPDX-License-Identifier: MIT
-// shaders/adaptive/layout_emcm2.h — cv's history layout (the method table's history_layout::emcm2): the EMCM over
-// (f, G) (include/emcv/port/ema.h) in two texels per pixel or block, and what only this layout does: the means'
-// second texel, the tile's noise test before the push. adaptive/history_io.h includes it, or layout_moving.h,
-// which implements the same functions; every formula is the port's (include/emcv/port/history.h).
+// emcv_adaptive_layout_emcm2.glsl — cv's history layout (EMCV_ADAPTIVE_CV; the library's history_layout::emcm2):
+// the EMCM over (f, G) (emcv/port/ema.h) in two texels per pixel or block, texel A (C_ff, C_fG, C_GG, count) in
+// RGBA32F and texel B (mean_f, mean_G) in RG32F, and what only this layout does: the means' second texel, the
+// tile's noise test before the push. emcv_adaptive_history.glsl includes it, or emcv_adaptive_layout_moving.glsl,
+// which implements the same functions; every formula is the port's (emcv/port/history.h). No resources: the
+// application's emcv_app_history_* functions (emcv_adaptive_history.glsl) load and store the texels.
 #ifndef EMCV_ADAPTIVE_LAYOUT_H
 #define EMCV_ADAPTIVE_LAYOUT_H
 
-// Coherent: under a quality target the burley pass plans a block's history and updates it in the invocation that
-// holds the block, after the tile's sort hands the pixels out (sss_burley.comp.glsl, sort_tile_by_count).
-layout(rgba32f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_A)) coherent uniform image2D history_a;
-layout(rg32f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_B)) coherent uniform image2D history_b;
-layout(EMCV_LAYOUT_BINDING(EMCV_ADAPTIVE_TEX_HISTORY_PREV_B)) uniform sampler2D history_prev_b;
+#define EMCV_ADAPTIVE_HISTORY_TEXELS 2            // texels A and B per pixel or block
+#define EMCV_ADAPTIVE_HISTORY_FORMAT_A rgba32f    // the image formats the application binds them with
+#define EMCV_ADAPTIVE_HISTORY_FORMAT_B rg32f
 #define EmcvAdaptiveState EmcvEmcm2
 #define EMCV_ADAPTIVE_ETA EMCV_HISTORY_ETA_EMCM  // the EMCM's weight
 #define EMCV_ADAPTIVE_NOISE_TEST 1               // the tile's noise test before the push (below)
@@ -22,21 +22,21 @@ EmcvAdaptiveState emcv_adaptive_init() { return emcv_emcm2_init(); }
 bool emcv_adaptive_decode(vec4 a, vec4 b, out EmcvAdaptiveState s) { return emcv_history_decode_emcm2(a, b.xy, s); }
 
 void emcv_adaptive_store(ivec2 p, EmcvAdaptiveState s) {
-    imageStore(history_a, p, emcv_history_encode_emcm2_cov(s));
-    imageStore(history_b, p, vec4(emcv_history_encode_emcm2_means(s), 0.0f, 0.0f));
+    emcv_app_history_store_a(p, emcv_history_encode_emcm2_cov(s));
+    emcv_app_history_store_b(p, vec4(emcv_history_encode_emcm2_means(s), 0.0f, 0.0f));
 }
 
 /// Stores texels as they were read (a kept history: no second rounding).
 void emcv_adaptive_store_raw(ivec2 p, vec4 a, vec4 b) {
-    imageStore(history_a, p, a);
-    imageStore(history_b, p, b);
+    emcv_app_history_store_a(p, a);
+    emcv_app_history_store_b(p, b);
 }
 
 /// This frame's second texel at p (the means).
-vec4 emcv_adaptive_load_b(ivec2 p) { return imageLoad(history_b, p); }
+vec4 emcv_adaptive_load_b(ivec2 p) { return emcv_app_history_load_b(p); }
 
 /// Last frame's second texel at q.
-vec4 emcv_adaptive_previous_b(ivec2 q) { return texelFetch(history_prev_b, q, 0); }
+vec4 emcv_adaptive_previous_b(ivec2 q) { return emcv_app_history_previous_b(q); }
 
 /// Resampling a reprojected history: adds w times a neighbour's means and comoments (not the count) to a running
 /// blend (a fresh state, emcv_adaptive_init(), to start: its statistics are 0).

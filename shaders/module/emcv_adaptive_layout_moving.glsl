@@ -1,14 +1,15 @@
 // SPDX-License-Identifier: MIT
-// shaders/adaptive/layout_moving.h — the moving-statistics history layout (the method table's
-// history_layout::moving_stats): a moving mean and variance of one scalar (include/emcv/port/ema.h) in one texel per
-// pixel or block, for spvg (the scalar is f) and cv-notex (the residual f - G, alpha = 1). adaptive/history_io.h
-// includes it, or layout_emcm2.h, which implements the same functions; every formula is the port's
-// (include/emcv/port/history.h). It has no second texel and no noise test (the hooks below do nothing).
+// emcv_adaptive_layout_moving.glsl — the moving-statistics history layout (EMCV_ADAPTIVE_SPVG, EMCV_ADAPTIVE_NOTEX;
+// the library's history_layout::moving_stats): a moving mean and variance of one scalar (emcv/port/ema.h) in one
+// RGBA16F texel A per pixel or block, for spvg (the scalar is f) and cv-notex (the residual f - G, alpha = 1).
+// emcv_adaptive_history.glsl includes it, or emcv_adaptive_layout_emcm2.glsl, which implements the same functions;
+// every formula is the port's (emcv/port/history.h). It has no second texel and no noise test (the hooks below
+// do nothing). No resources: the application's emcv_app_history_*_a functions load and store the texel.
 #ifndef EMCV_ADAPTIVE_LAYOUT_H
 #define EMCV_ADAPTIVE_LAYOUT_H
 
-// Coherent: as layout_emcm2.h's.
-layout(rgba16f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_ADAPTIVE_IMG_HISTORY_A)) coherent uniform image2D history_a;
+#define EMCV_ADAPTIVE_HISTORY_TEXELS 1            // texel A only
+#define EMCV_ADAPTIVE_HISTORY_FORMAT_A rgba16f    // the image format the application binds it with
 #define EmcvAdaptiveState EmcvMovingStats
 #define EMCV_ADAPTIVE_ETA EMCV_HISTORY_ETA_MOVING  // the moving statistics' weight
 #define EMCV_ADAPTIVE_NOISE_TEST 0                 // no noise test: the hooks below do nothing
@@ -19,10 +20,10 @@ EmcvAdaptiveState emcv_adaptive_init() { return emcv_moving_stats_init(); }
 /// Decodes a raw history texel (b unused); false (state reset) when it is poisoned.
 bool emcv_adaptive_decode(vec4 a, vec4 b, out EmcvAdaptiveState s) { return emcv_history_decode_stats(a, s); }
 
-void emcv_adaptive_store(ivec2 p, EmcvAdaptiveState s) { imageStore(history_a, p, emcv_history_encode_stats(s)); }
+void emcv_adaptive_store(ivec2 p, EmcvAdaptiveState s) { emcv_app_history_store_a(p, emcv_history_encode_stats(s)); }
 
 /// Stores the texel as it was read (a kept history: no second rounding).
-void emcv_adaptive_store_raw(ivec2 p, vec4 a, vec4 b) { imageStore(history_a, p, a); }
+void emcv_adaptive_store_raw(ivec2 p, vec4 a, vec4 b) { emcv_app_history_store_a(p, a); }
 
 /// No second texel: zeros.
 vec4 emcv_adaptive_load_b(ivec2 p) { return vec4(0.0f); }
