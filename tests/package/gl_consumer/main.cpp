@@ -23,20 +23,13 @@
 #include <emcv/port/bindings.h>
 #include <emcv/port/host.hpp>
 
+#include "../common/egl_headless.h"
 #include "stream.h"
 
 namespace {
 
-constexpr int kSkip = 77;
 constexpr GLuint kPixels = 256;  // four workgroups of EMCV_WORKGROUP_SIZE_X
 constexpr GLuint kUpdates = 200;
-
-int no_display(const char* why) {
-    const char* require = std::getenv("EMCV_REQUIRE_GL");
-    const bool required = require != nullptr && std::strcmp(require, "1") == 0;
-    std::printf("%s: %s\n", required ? "error (EMCV_REQUIRE_GL=1)" : "skipped: no EGL display", why);
-    return required ? 1 : kSkip;
-}
 
 std::string read_text(const char* path) {
     std::ifstream in(path, std::ios::binary);
@@ -44,49 +37,6 @@ std::string read_text(const char* path) {
     s << in.rdbuf();
     return s.str();
 }
-
-bool has_extension(const char* list, const char* name) {
-    if (list == nullptr) return false;
-    const std::size_t n = std::strlen(name);
-    for (const char* p = std::strstr(list, name); p != nullptr; p = std::strstr(p + n, name))
-        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return true;
-    return false;
-}
-
-/// A display: Mesa's surfaceless platform, else the first EGL device, else the default display.
-EGLDisplay open_display() {
-    const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-    auto get_platform_display =
-        reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
-    EGLint major = 0, minor = 0;
-    if (get_platform_display && has_extension(client, "EGL_MESA_platform_surfaceless")) {
-        EGLDisplay d = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-        if (d != EGL_NO_DISPLAY && eglInitialize(d, &major, &minor)) return d;
-    }
-    auto query_devices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
-    if (get_platform_display && query_devices && has_extension(client, "EGL_EXT_platform_device")) {
-        EGLDeviceEXT device{};
-        EGLint count = 0;
-        if (query_devices(1, &device, &count) && count > 0) {
-            EGLDisplay d = get_platform_display(EGL_PLATFORM_DEVICE_EXT, device, nullptr);
-            if (d != EGL_NO_DISPLAY && eglInitialize(d, &major, &minor)) return d;
-        }
-    }
-    EGLDisplay d = eglGetDisplay(EGL_DEFAULT_DISPLAY);
-    if (d != EGL_NO_DISPLAY && eglInitialize(d, &major, &minor)) return d;
-    return EGL_NO_DISPLAY;
-}
-
-template <class F>
-F load(const char* name) {
-    F f = reinterpret_cast<F>(eglGetProcAddress(name));
-    if (f == nullptr) {
-        std::printf("FAILED: eglGetProcAddress(\"%s\") returned null\n", name);
-        std::exit(1);
-    }
-    return f;
-}
-#define CONSUMER_GL(type, name) const auto name = load<type>(#name)
 
 const char* const kMain = R"(
 layout(local_size_x = EMCV_WORKGROUP_SIZE_X) in;
@@ -114,20 +64,13 @@ bool same_bits(const T& a, const T& b) {
 }  // namespace
 
 int main() {
-    EGLDisplay display = open_display();
-    if (display == EGL_NO_DISPLAY) return no_display("no surfaceless, device or default EGL display initialises");
-    const char* extensions = eglQueryString(display, EGL_EXTENSIONS);
-    if (!has_extension(extensions, "EGL_KHR_no_config_context") ||
-        !has_extension(extensions, "EGL_KHR_surfaceless_context"))
-        return no_display("the display lacks EGL_KHR_no_config_context or EGL_KHR_surfaceless_context");
-    if (!eglBindAPI(EGL_OPENGL_API)) return no_display("eglBindAPI(EGL_OPENGL_API) failed");
-    const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                                 EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
-    EGLContext context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
-    if (context == EGL_NO_CONTEXT || !eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
-        std::printf("FAILED: no OpenGL 4.5 core context on the EGL display (0x%x)\n", eglGetError());
-        return 1;
-    }
+    EGLDisplay display = consumer::open_display();
+    if (display == EGL_NO_DISPLAY)
+        return consumer::no_display("no surfaceless, device or default EGL display initialises");
+    bool skip = false;
+    EGLContext context = consumer::make_context(display, skip);
+    if (skip) return consumer::no_display("the display lacks EGL_KHR_no_config_context or EGL_KHR_surfaceless_context");
+    if (context == EGL_NO_CONTEXT) return 1;
 
     CONSUMER_GL(PFNGLGETSTRINGPROC, glGetString);
     CONSUMER_GL(PFNGLCREATESHADERPROC, glCreateShader);

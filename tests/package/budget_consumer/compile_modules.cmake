@@ -1,0 +1,64 @@
+# cmake -DGLSLANG=<glslangValidator> -DSPIRV_CROSS=<spirv-cross> -DSHARE_DIR=<prefix>/share/emcv
+#       -DINCLUDE_ROOT=<prefix>/include -DSOURCE_MODULES=<emcv source>/shaders/module -DPASSES=<this folder>
+#       -DWORK=<dir> -P compile_modules.cmake
+# The installed GPU modules as an engine on another API takes them:
+#  1. the installed modules are the source tree's, file for file, and declare no resource (no `uniform`,
+#     `buffer` or `layout(` outside comments: the application's bindings only);
+#  2. budget_consumer's four passes, for each method (EMCV_ADAPTIVE_CV, _SPVG, _NOTEX) and grain
+#     (EMCV_HISTORY_BLOCK 1, 2, 4), compile to OpenGL and Vulkan SPIR-V with glslang's include directive
+#     (-I <prefix>/share/emcv -I <prefix>/include), and spirv-cross turns the Vulkan SPIR-V into HLSL (shader
+#     model 5.1).
+cmake_minimum_required(VERSION 3.21)
+foreach(var GLSLANG SPIRV_CROSS SHARE_DIR INCLUDE_ROOT SOURCE_MODULES PASSES WORK)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "compile_modules.cmake: -D${var}=... is required")
+  endif()
+endforeach()
+file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
+
+function(run step)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${step} failed (exit ${rc}):\n${out}${err}")
+  endif()
+endfunction()
+
+# 1. installed = source; no resources
+file(GLOB source_modules RELATIVE "${SOURCE_MODULES}" "${SOURCE_MODULES}/*.glsl")
+file(GLOB installed_modules RELATIVE "${SHARE_DIR}/module" "${SHARE_DIR}/module/*.glsl")
+list(SORT source_modules)
+list(SORT installed_modules)
+if(source_modules STREQUAL "" OR NOT source_modules STREQUAL installed_modules)
+  message(FATAL_ERROR "installed modules (${installed_modules}) differ from the source tree's (${source_modules})")
+endif()
+foreach(m IN LISTS installed_modules)
+  file(READ "${SHARE_DIR}/module/${m}" text)
+  string(REGEX REPLACE "//[^\n]*" "" code "${text}")  # comments and #error messages out
+  string(REGEX REPLACE "#error[^\n]*" "" code "${code}")
+  foreach(pattern "(^|[^a-z_])(uniform|buffer)[ \t\n]" "layout[ \t]*\\(")
+    if(code MATCHES "${pattern}")
+      message(FATAL_ERROR "module/${m} declares a resource ('${CMAKE_MATCH_0}'): the application's bindings only")
+    endif()
+  endforeach()
+endforeach()
+
+# 2. every pass x method x grain: OpenGL and Vulkan SPIR-V, then HLSL
+set(count 0)
+foreach(method CV SPVG NOTEX)
+  foreach(block 1 2 4)
+    foreach(pass plan solve count update)
+      set(name "${pass}_${method}_k${block}")
+      set(wrapper "${WORK}/${name}.comp")
+      file(WRITE "${wrapper}" "#version 450 core\n#extension GL_GOOGLE_include_directive : require\n"
+                              "#define EMCV_ADAPTIVE_${method} 1\n#define EMCV_HISTORY_BLOCK ${block}\n"
+                              "#define EMCV_HISTORY_SPP_BUDGET 8.0f\n#include \"${pass}.comp.glsl\"\n")
+      set(includes "-I${PASSES}" "-I${SHARE_DIR}" "-I${INCLUDE_ROOT}")
+      run("${name}, OpenGL SPIR-V" "${GLSLANG}" -G --target-env opengl ${includes} "${wrapper}" -o "${WORK}/${name}.gl.spv")
+      run("${name}, Vulkan SPIR-V" "${GLSLANG}" -V --target-env vulkan1.0 ${includes} "${wrapper}" -o "${WORK}/${name}.vk.spv")
+      run("${name}, HLSL" "${SPIRV_CROSS}" "${WORK}/${name}.vk.spv" --hlsl --shader-model 51 --output "${WORK}/${name}.hlsl")
+      math(EXPR count "${count} + 1")
+    endforeach()
+  endforeach()
+endforeach()
+message(STATUS "gpu modules: OK (${installed_modules} without resources; ${count} passes compiled for OpenGL and Vulkan SPIR-V and translated to HLSL)")

@@ -1,0 +1,333 @@
+// SPDX-License-Identifier: MIT
+// An OpenGL engine running emcv's budget mode on the GPU from the installed prefix alone: its own passes
+// (plan, solve, count, update: *.comp.glsl beside this file) over its own bindings (app.glsl), built from the
+// installed modules <prefix>/share/emcv/module/*.glsl and port headers <prefix>/include/emcv/port/*.h through a
+// small include resolver of its own, run on a headless EGL context over a synthetic sequence: a still 36 x 20
+// image (partial 8x8 tiles at two edges, two materials, a corner that does not scatter, a last column whose
+// kernels are under a pixel) whose per-pixel noise grows from left to
+// right, and a light that goes off over the left half at frame kSwitch. The host takes the samples (f and G of
+// each pixel, from the counts the GPU planned) and the GPU updates its histories. Every frame, the counts and
+// the histories are compared with the C++ library's budget recipe on the same frame (emcv::plan_frame with its
+// prior carried, emcv::sampling_update): bit for bit. cv (the EMCM over (f, G), RGBA32F + RG32F texels) runs;
+// the moving-statistics layout stores binary16, which the C++ policy does not round to, so it is compiled
+// (compile_modules.cmake), not compared here.
+// Exit 0 and "budget consumer: OK" on success, 1 on a failure, 77 (CTest's SKIP_RETURN_CODE) without an EGL
+// display unless EMCV_REQUIRE_GL=1.
+#include <GL/glcorearb.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <emcv/adaptive_sampling.hpp>
+#include <emcv/port/host.hpp>
+
+#include "../common/egl_headless.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kWidth = 36;
+constexpr int kHeight = 20;
+constexpr int kPixels = kWidth * kHeight;
+constexpr int kFrames = 60;
+constexpr int kSwitch = 30;   // the left half's light goes off
+constexpr std::uint32_t kSeed = 7;
+constexpr float kBudget = 8.0f;  // samples per scattering pixel; the passes' EMCV_HISTORY_SPP_BUDGET
+
+std::string read_text(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw std::runtime_error("cannot read " + path.string());
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+/// `file`'s text with every `#include "name"` replaced by the named file's text (searched beside the including
+/// file, then in each root): what an engine's shader pipeline does (or glslang's GL_GOOGLE_include_directive).
+/// The modules and the port headers carry include guards, so a file included twice is harmless.
+std::string resolve(const fs::path& file, const std::vector<fs::path>& roots, int depth = 0) {
+    if (depth > 16) throw std::runtime_error("include depth over 16 at " + file.string());
+    std::istringstream in(read_text(file));
+    std::string out, line;
+    while (std::getline(in, line)) {
+        const auto at = line.find("#include \"");
+        if (at == std::string::npos || line.find_first_not_of(" \t") != at) {
+            out += line + "\n";
+            continue;
+        }
+        const auto begin = at + 10, end = line.find('"', begin);
+        const std::string name = line.substr(begin, end - begin);
+        std::vector<fs::path> where{file.parent_path()};
+        where.insert(where.end(), roots.begin(), roots.end());
+        bool found = false;
+        for (const fs::path& root : where) {
+            if (fs::exists(root / name)) {
+                out += resolve(root / name, roots, depth + 1);
+                found = true;
+                break;
+            }
+        }
+        if (!found) throw std::runtime_error(file.string() + ": #include \"" + name + "\" found in no include root");
+    }
+    return out;
+}
+
+/// The synthetic scene: material 1, a second material (2) in the lower right whose noise is 4 times as high (the
+/// pooling must keep them apart), and a 4 x 6 corner that does not scatter.
+std::uint32_t material_of(int x, int y) {
+    if (x < 4 && y < 6) return 0u;
+    return x >= 20 && y >= 11 ? 2u : 1u;
+}
+
+/// A hash in [-1, 1) (the sample noise of pixel i at frame t).
+float noise(std::uint32_t i, std::uint32_t t) {
+    std::uint32_t h = i * 747796405u + t * 2891336453u + 12345u;
+    h = ((h >> ((h >> 28u) + 4u)) ^ h) * 277803737u;
+    h = (h >> 22u) ^ h;
+    return static_cast<float>(h >> 8) / static_cast<float>(1u << 23) - 1.0f;
+}
+
+/// The tracked f (the mean of n samples) and G (the control) of pixel (x, y) at frame t.
+void sample(int x, int y, int t, int n, float& f, float& g) {
+    const float light = (t >= kSwitch && x < kWidth / 2) ? 0.15f : 1.0f;
+    const float albedo = 0.6f + 0.075f * static_cast<float>((x * 7 + y * 3) % 5);
+    const float sigma = (0.02f + 0.3f * static_cast<float>(x) / kWidth) * light *  // per sample
+                        (material_of(x, y) == 2u ? 4.0f : 1.0f);
+    g = light;
+    f = albedo * light + sigma * 1.7f * noise(static_cast<std::uint32_t>(y * kWidth + x), static_cast<std::uint32_t>(t)) /
+                             std::sqrt(static_cast<float>(n > 0 ? n : 1));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc != 3) {
+        std::printf("usage: budget_consumer <prefix>/share/emcv <prefix>/include\n");
+        return 2;
+    }
+    const std::vector<fs::path> roots{argv[1], argv[2]};
+    EGLDisplay display = consumer::open_display();
+    if (display == EGL_NO_DISPLAY)
+        return consumer::no_display("no surfaceless, device or default EGL display initialises");
+    bool skip = false;
+    EGLContext context = consumer::make_context(display, skip);
+    if (skip) return consumer::no_display("the display lacks EGL_KHR_no_config_context or EGL_KHR_surfaceless_context");
+    if (context == EGL_NO_CONTEXT) return 1;
+
+    CONSUMER_GL(PFNGLCREATESHADERPROC, glCreateShader);
+    CONSUMER_GL(PFNGLSHADERSOURCEPROC, glShaderSource);
+    CONSUMER_GL(PFNGLCOMPILESHADERPROC, glCompileShader);
+    CONSUMER_GL(PFNGLGETSHADERIVPROC, glGetShaderiv);
+    CONSUMER_GL(PFNGLGETSHADERINFOLOGPROC, glGetShaderInfoLog);
+    CONSUMER_GL(PFNGLCREATEPROGRAMPROC, glCreateProgram);
+    CONSUMER_GL(PFNGLATTACHSHADERPROC, glAttachShader);
+    CONSUMER_GL(PFNGLLINKPROGRAMPROC, glLinkProgram);
+    CONSUMER_GL(PFNGLGETPROGRAMIVPROC, glGetProgramiv);
+    CONSUMER_GL(PFNGLGETPROGRAMINFOLOGPROC, glGetProgramInfoLog);
+    CONSUMER_GL(PFNGLUSEPROGRAMPROC, glUseProgram);
+    CONSUMER_GL(PFNGLCREATEBUFFERSPROC, glCreateBuffers);
+    CONSUMER_GL(PFNGLNAMEDBUFFERSTORAGEPROC, glNamedBufferStorage);
+    CONSUMER_GL(PFNGLNAMEDBUFFERSUBDATAPROC, glNamedBufferSubData);
+    CONSUMER_GL(PFNGLBINDBUFFERBASEPROC, glBindBufferBase);
+    CONSUMER_GL(PFNGLCREATETEXTURESPROC, glCreateTextures);
+    CONSUMER_GL(PFNGLTEXTURESTORAGE2DPROC, glTextureStorage2D);
+    CONSUMER_GL(PFNGLTEXTURESUBIMAGE2DPROC, glTextureSubImage2D);
+    CONSUMER_GL(PFNGLGETTEXTUREIMAGEPROC, glGetTextureImage);
+    CONSUMER_GL(PFNGLTEXTUREPARAMETERIPROC, glTextureParameteri);
+    CONSUMER_GL(PFNGLBINDTEXTUREUNITPROC, glBindTextureUnit);
+    CONSUMER_GL(PFNGLBINDIMAGETEXTUREPROC, glBindImageTexture);
+    CONSUMER_GL(PFNGLDISPATCHCOMPUTEPROC, glDispatchCompute);
+    CONSUMER_GL(PFNGLMEMORYBARRIERPROC, glMemoryBarrier);
+
+    // The four passes: #version, the method and the budget, then the pass with its includes resolved.
+    const std::string prelude = "#version 450 core\n#define EMCV_ADAPTIVE_CV 1\n#define EMCV_HISTORY_SPP_BUDGET " +
+                                std::to_string(kBudget) + "f\n";
+    const fs::path here = fs::path(CONSUMER_DIR);
+    GLuint programs[4] = {};
+    const char* const names[4] = {"plan", "solve", "count", "update"};
+    std::vector<char> log(1 << 15);
+    for (int k = 0; k < 4; ++k) {
+        std::string source;
+        try {
+            source = prelude + resolve(here / (std::string(names[k]) + ".comp.glsl"), roots);
+        } catch (const std::exception& e) {
+            std::printf("FAILED: %s\n", e.what());
+            return 1;
+        }
+        const char* text = source.c_str();
+        const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+        glShaderSource(shader, 1, &text, nullptr);
+        glCompileShader(shader);
+        GLint ok = GL_FALSE;
+        glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+        if (!ok) {
+            glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
+            std::printf("FAILED: %s.comp.glsl does not compile:\n%s\n", names[k], log.data());
+            return 1;
+        }
+        programs[k] = glCreateProgram();
+        glAttachShader(programs[k], shader);
+        glLinkProgram(programs[k]);
+        glGetProgramiv(programs[k], GL_LINK_STATUS, &ok);
+        if (!ok) {
+            glGetProgramInfoLog(programs[k], static_cast<GLsizei>(log.size()), nullptr, log.data());
+            std::printf("FAILED: %s.comp.glsl does not link:\n%s\n", names[k], log.data());
+            return 1;
+        }
+    }
+
+    // Resources, at app.glsl's bindings. The histories start as the encoded fresh state.
+    using emcv::port::EmcvEmcm2;
+    std::vector<EmcvEmcm2> states(kPixels, emcv::port::emcv_emcm2_init());
+    std::vector<float> fresh_a(4 * kPixels), fresh_b(2 * kPixels);
+    for (int i = 0; i < kPixels; ++i) {
+        const auto a = emcv::port::emcv_history_encode_emcm2_cov(states[i]);
+        const auto b = emcv::port::emcv_history_encode_emcm2_means(states[i]);
+        std::memcpy(&fresh_a[4 * i], &a, sizeof(float) * 4);
+        std::memcpy(&fresh_b[2 * i], &b, sizeof(float) * 2);
+    }
+    GLuint history_a[2], history_b[2], plan, taken, material, tracked;
+    glCreateTextures(GL_TEXTURE_2D, 2, history_a);
+    glCreateTextures(GL_TEXTURE_2D, 2, history_b);
+    for (int k = 0; k < 2; ++k) {
+        glTextureStorage2D(history_a[k], 1, GL_RGBA32F, kWidth, kHeight);
+        glTextureStorage2D(history_b[k], 1, GL_RG32F, kWidth, kHeight);
+        glTextureSubImage2D(history_a[k], 0, 0, 0, kWidth, kHeight, GL_RGBA, GL_FLOAT, fresh_a.data());
+        glTextureSubImage2D(history_b[k], 0, 0, 0, kWidth, kHeight, GL_RG, GL_FLOAT, fresh_b.data());
+    }
+    std::vector<std::uint32_t> materials(kPixels), zeros(kPixels, 0u);
+    std::vector<std::uint8_t> sub_pixel(kPixels);
+    for (int i = 0; i < kPixels; ++i) {
+        materials[i] = material_of(i % kWidth, i / kWidth);
+        sub_pixel[i] = i % kWidth == kWidth - 1 ? 1 : 0;  // app.glsl's app_sub_pixel
+    }
+    const auto make_uint = [&](GLuint& t, const std::uint32_t* data) {
+        glCreateTextures(GL_TEXTURE_2D, 1, &t);
+        glTextureStorage2D(t, 1, GL_R32UI, kWidth, kHeight);
+        glTextureSubImage2D(t, 0, 0, 0, kWidth, kHeight, GL_RED_INTEGER, GL_UNSIGNED_INT, data);
+    };
+    make_uint(plan, zeros.data());
+    make_uint(taken, zeros.data());
+    make_uint(material, materials.data());
+    // texelFetch only, but an integer texture with the default linear filters is incomplete (reads 0)
+    glTextureParameteri(material, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(material, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glCreateTextures(GL_TEXTURE_2D, 1, &tracked);
+    glTextureStorage2D(tracked, 1, GL_RG32F, kWidth, kHeight);
+    GLuint buffers[2];
+    glCreateBuffers(2, buffers);
+    const emcv::port::host::EmcvBudgetBlock zero_block{};
+    glNamedBufferStorage(buffers[0], sizeof zero_block, &zero_block, GL_DYNAMIC_STORAGE_BIT);
+    glNamedBufferStorage(buffers[1], 4 * sizeof(std::uint32_t), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffers[0]);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 1, buffers[1]);
+    glBindImageTexture(4, plan, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindImageTexture(5, taken, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindTextureUnit(8, material);
+    glBindTextureUnit(9, tracked);
+    const GLbitfield all_barriers = GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
+                                    GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT;
+    const GLuint groups_x = (kWidth + 7) / 8, groups_y = (kHeight + 7) / 8;
+
+    // The C++ library's recipe on the same frames.
+    emcv::sampling_params params;
+    params.estimator = emcv::sampling_estimator::cv;
+    params.mode = emcv::sampling_mode::budget;
+    params.budget = kBudget;
+    emcv::budget_prior prior;
+    std::vector<float> sigma2(kPixels), f(kPixels), g(kPixels), fg(2 * kPixels);
+    std::vector<int> counts(kPixels);
+    std::vector<std::uint32_t> gpu_counts(kPixels);
+    std::vector<float> gpu_a(4 * kPixels), gpu_b(2 * kPixels);
+    int failures = 0;
+    double left_before = 0, right_before = 0;  // mean N over the last frame before the switch
+    std::set<int> distinct;
+    for (int t = 0; t < kFrames && failures == 0; ++t) {
+        const int now = t % 2, last = 1 - now;
+        const std::uint32_t frame[4] = {static_cast<std::uint32_t>(t), kSeed, kWidth, kHeight};
+        glNamedBufferSubData(buffers[1], 0, sizeof frame, frame);
+        glBindImageTexture(2, history_a[now], 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+        glBindImageTexture(3, history_b[now], 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32F);
+        glBindTextureUnit(6, history_a[last]);
+        glBindTextureUnit(7, history_b[last]);
+        glUseProgram(programs[0]);
+        glDispatchCompute(groups_x, groups_y, 1);
+        glMemoryBarrier(all_barriers);
+        glUseProgram(programs[1]);
+        glDispatchCompute(1, 1, 1);
+        glMemoryBarrier(all_barriers);
+        glUseProgram(programs[2]);
+        glDispatchCompute(groups_x, groups_y, 1);
+        glMemoryBarrier(all_barriers);
+        glGetTextureImage(taken, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, kPixels * 4, gpu_counts.data());
+
+        const emcv::frame_plan cpu = emcv::plan_frame(params, states.data(), kPixels, kWidth, materials.data(),
+                                                      sub_pixel.data(), static_cast<std::uint32_t>(t), kSeed, sigma2.data(),
+                                                      counts.data(), prior);
+        for (int i = 0; i < kPixels && failures < 10; ++i) {
+            if (static_cast<int>(gpu_counts[i]) != counts[i]) {
+                std::printf("FAILED: frame %d pixel (%d, %d): the GPU planned N = %u, the C++ policy %d\n", t,
+                            i % kWidth, i / kWidth, gpu_counts[i], counts[i]);
+                ++failures;
+            }
+            distinct.insert(counts[i]);
+        }
+        if (t == kSwitch - 1) {
+            for (int i = 0; i < kPixels; ++i)
+                (i % kWidth < kWidth / 2 ? left_before : right_before) += counts[i];
+        }
+        (void)cpu;
+
+        // The host samples; the GPU and the library push the same f and G.
+        for (int i = 0; i < kPixels; ++i) {
+            sample(i % kWidth, i / kWidth, t, counts[i], f[i], g[i]);
+            fg[2 * i] = f[i];
+            fg[2 * i + 1] = g[i];
+        }
+        glTextureSubImage2D(tracked, 0, 0, 0, kWidth, kHeight, GL_RG, GL_FLOAT, fg.data());
+        glMemoryBarrier(all_barriers);
+        glUseProgram(programs[3]);
+        glDispatchCompute(groups_x, groups_y, 1);
+        glMemoryBarrier(all_barriers);
+        emcv::sampling_update(params, states.data(), kPixels, kWidth, materials.data(), f.data(), g.data(),
+                              counts.data());
+        glGetTextureImage(history_a[now], 0, GL_RGBA, GL_FLOAT, kPixels * 16, gpu_a.data());
+        glGetTextureImage(history_b[now], 0, GL_RG, GL_FLOAT, kPixels * 8, gpu_b.data());
+        for (int i = 0; i < kPixels && failures < 10; ++i) {
+            const auto a = emcv::port::emcv_history_encode_emcm2_cov(states[i]);
+            const auto b = emcv::port::emcv_history_encode_emcm2_means(states[i]);
+            if (std::memcmp(&a, &gpu_a[4 * i], 16) != 0 || std::memcmp(&b, &gpu_b[2 * i], 8) != 0) {
+                std::printf("FAILED: frame %d pixel (%d, %d): GPU history (%.9g %.9g %.9g count %.0f; means %.9g %.9g), "
+                            "C++ (%.9g %.9g %.9g count %.0f; means %.9g %.9g)\n",
+                            t, i % kWidth, i / kWidth, double(gpu_a[4 * i]), double(gpu_a[4 * i + 1]),
+                            double(gpu_a[4 * i + 2]), double(gpu_a[4 * i + 3]), double(gpu_b[2 * i]),
+                            double(gpu_b[2 * i + 1]), double(a.x), double(a.y), double(a.z), double(a.w), double(b.x),
+                            double(b.y));
+                ++failures;
+            }
+        }
+    }
+    // The sequence must exercise the policy: counts that follow the noise (the right half is noisier).
+    if (failures == 0 && !(right_before > 1.5 * left_before && distinct.size() >= 4)) {
+        std::printf("FAILED: the counts do not follow the noise (left half %.0f, right half %.0f samples; %zu "
+                    "distinct counts)\n", left_before, right_before, distinct.size());
+        ++failures;
+    }
+    eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglDestroyContext(display, context);
+    eglTerminate(display);
+    if (failures != 0) return 1;
+    std::printf("budget consumer: OK (%d frames of %dx%d, a light switch at frame %d: counts and histories bit-equal "
+                "to the C++ policy; N from %d to %d)\n",
+                kFrames, kWidth, kHeight, kSwitch, *distinct.begin(), *distinct.rbegin());
+    return 0;
+}
