@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The adaptive methods' tables in docs/renderer.md ("Measured"), each from emcv-demo runs against the reference
+# The adaptive methods' tables (docs/notebook/2026-12-07-renderer-budget-measured.md), each from emcv-demo runs
+# against the reference
 # (PSNR of the display image, mean over frames; the first light change is the one emcv-demo's summary names):
 #   budget   for each scene and B in $BUDGETS (default 8 12 16): burley-B, spvg, cv and cv-notex, the adaptive ones
 #            spending B per SSS pixel (--spp-budget B). One row per scene, B and method: PSNR before the first

@@ -20,22 +20,19 @@ frame's counts from --first on; per frame, the samples (sum of N over the SSS pi
 in the order the pass runs: 32 x the warp's largest N, summed over the dispatched warps), which is what a GPU's
 sampling loop takes time for; per scene and method one markdown row: the SSS pixels' p95 / median over those frames (burley-B's
 work follows them alone), then the median, p95 / median and max / median of each of the two. Deterministic: counts,
-not clocks (llvmpipe's clock is too noisy to read a 10% spread; docs/renderer.md, "Steady cost").
+not clocks (llvmpipe's clock is too noisy to read a 10% spread). The tables as measured:
+docs/notebook/2026-12-07-renderer-steady-work.md.
 
 Usage: /usr/bin/python3 scripts/eval/warp_efficiency.py [--build build] [--scene light-off] [--size 128x128]
            [--frames 29,30,33,59] [--spp-budget 8 | --target-variance V] [--methods spvg,cv,cv-notex]
        /usr/bin/python3 scripts/eval/warp_efficiency.py --steady [--build build] [--size 128x128] [--frames 60]
-           [--first 2] [--spp-budget 8] [--scenes light-off,...] [--methods spvg,cv,cv-notex] [--write-doc]
-With --write-doc the --steady table replaces the GENERATED block steady-work-b<B> of docs/renderer.md.
+           [--first 2] [--spp-budget 8] [--scenes light-off,...] [--methods spvg,cv,cv-notex]
 """
 import argparse
 import csv
 import os
 import subprocess
-import sys
 import tempfile
-
-from run_eval import publish_table
 
 TILE = 8
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -99,7 +96,7 @@ def spread(values):
     return m, float(np.percentile(v, 95)) / m, float(v.max()) / m
 
 
-def steady(a, argv):
+def steady(a):
     budget = a.spp_budget
     methods = [f"burley-{budget}"] + a.methods.split(",")
     frames = int(a.frames)
@@ -125,8 +122,7 @@ def steady(a, argv):
                 work = spread([p[2] for p in per])
                 lines.append(f"| {scene} | {m} | {pixels[1]:.3f} | {samples[0]:.0f} | {samples[1]:.3f} | {samples[2]:.3f} "
                              f"| {work[0]:.0f} | {work[1]:.3f} | {work[2]:.3f} |")
-    publish_table("\n".join(lines), a.write_doc, os.path.join(ROOT, "docs", "renderer.md"), f"steady-work-b{budget}",
-                  "scripts/eval/warp_efficiency.py", argv)
+    print("\n".join(lines))
 
 
 def main():
@@ -141,17 +137,12 @@ def main():
     p.add_argument("--steady", action="store_true", help="frame-to-frame spread of the samples and the warp work")
     p.add_argument("--first", type=int, default=2, help="--steady: the first frame counted (default 2)")
     p.add_argument("--scenes", default=STEADY_SCENES, help="--steady: built-in names or paths under demo/scenes without .json")
-    p.add_argument("--write-doc", action="store_true",
-                   help="--steady: also replace the GENERATED block steady-work-b<B> of docs/renderer.md")
-    argv = sys.argv[1:]
     a = p.parse_args()
-    if a.write_doc and not a.steady:
-        p.error("--write-doc writes the --steady table")
     if a.steady:
         if a.target_variance:
             p.error("--steady compares at a budget: not with --target-variance")
         a.frames = a.frames or "60"
-        steady(a, argv)
+        steady(a)
         return
     a.frames = a.frames or "29,30,33,59"
     frames = [int(f) for f in a.frames.split(",")]
