@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""The temporal resolve's effect per method, raw against resolved (docs/frame.md, "Temporal resolve").
+"""The temporal resolve's effect per method, raw against resolved (docs/frame.md, "Temporal resolve"; the
+tables as made at commit 326c448 and their reading: docs/notebook/2026-12-07-frame-resolve-effect.md).
 
 Renders each scene with emcv-demo (--resolve taa, the adaptive methods under --spp-budget B) and prints one
 markdown table per scene from its metrics.csv:
