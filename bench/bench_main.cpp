@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // emcv-bench: nanoseconds per update of every estimator variant beside its error on the hard cases, the
 // per-pixel batch beside a same-bytes copy, and Boost.Accumulators on the same streams.
-// scripts/bench_tables.py runs it with --benchmark_format=json and writes docs/accuracy-vs-time.md.
+// scripts/bench_tables.py runs it with --benchmark_format=json and writes docs/results/accuracy-vs-time.md.
 #include <benchmark/benchmark.h>
 
 #include <boost/accumulators/accumulators.hpp>

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Regenerates the tables of docs/accuracy-vs-time.md (and the raw-moment table of docs/numerics.md and the
-batch figures quoted in docs/integration.md) from one run of emcv-bench.
+"""Regenerates the tables of docs/results/accuracy-vs-time.md (read in docs/results.md), the raw-moment table of
+docs/numerics.md and the batch figures quoted in docs/integration.md from one run of emcv-bench.
 
 Usage (from the repository root, after building emcv-bench):
     /usr/bin/python3 scripts/bench_tables.py [--bench build/bin/emcv-bench] [--min-time 0.1] [--repetitions 3]
@@ -19,7 +19,7 @@ import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-DOC_TIME = os.path.join(ROOT, "docs", "accuracy-vs-time.md")
+DOC_TIME = os.path.join(ROOT, "docs", "results", "accuracy-vs-time.md")
 DOC_NUMERICS = os.path.join(ROOT, "docs", "numerics.md")
 DOC_INTEGRATION = os.path.join(ROOT, "docs", "integration.md")
 
@@ -263,7 +263,7 @@ def integration_batch(fractions, report, rows, regenerated):
             f"the same bytes, the compensated one at "
             f"{f.get(('float', 'moving_stats_update compensated'), 0):.0f}% and "
             f"{f.get(('double', 'moving_stats_update compensated'), 0):.0f}% of its own (larger) copy "
-            f"([accuracy-vs-time.md](accuracy-vs-time.md)). {regenerated}")
+            f"([results/accuracy-vs-time.md](results/accuracy-vs-time.md)). {regenerated}")
 
 
 def replace_block(text, name, body, path):

@@ -70,7 +70,7 @@ public:
 };
 
 /// running_covariance with a compensated (two-term) mean: same recurrence, the mean's rounding error is
-/// carried in state_type::mean_compensation (docs/numerics.md, docs/accuracy-vs-time.md).
+/// carried in state_type::mean_compensation (docs/numerics.md, docs/results/accuracy-vs-time.md).
 template <class T, std::size_t N>
 class compensated_running_covariance : public detail::cumulative_covariance<T, N, mean_accuracy::compensated> {
     using base = detail::cumulative_covariance<T, N, mean_accuracy::compensated>;

@@ -104,7 +104,7 @@ constexpr std::pair<std::size_t, std::size_t> packed_row_column(std::size_t k, s
 /// vectorises. range_check::branch, for one stream, skips each clamp behind a branch that is taken only when
 /// the value is out of range (|v| <= max fails): the clamp is the identity on every in-range value, so the
 /// results are bit-identical, and the predicted branch takes the compare and select off the loop-carried
-/// chain mu -> d -> mu (sub + fma) and Cov -> Cov (docs/accuracy-vs-time.md, "One stream").
+/// chain mu -> d -> mu (sub + fma) and Cov -> Cov (docs/results/accuracy-vs-time.md, "One stream").
 enum class range_check { select, branch };
 
 #if defined(__GNUC__) || defined(__clang__)

@@ -2,7 +2,8 @@
 """Turns the GPU runs of scripts/eval/gpu_runs.sh into the generated blocks of docs/results.md, section "GPU":
     /usr/bin/python3 scripts/eval/gpu_report.py [--doc PATH] docs/results/gpu
 The run directory holds glinfo.txt, demo-<size>/metrics.csv (PSNR per frame against the converged reference),
-eval-<size>-run<k>.csv (SSS pass ms per frame, three runs), scaling-<size>.csv and, from the runs that have them,
+eval-<size>-run<k>.csv (SSS pass ms per frame, three runs), scaling-<size>.csv (each CSV may be stored gzip-compressed
+as NAME.csv.gz, as in docs/results/gpu/) and, from the runs that have them,
 cost-<setting>/ (scripts/eval/sss_cost.py --save-raw: the SSS passes at equal samples), clocks.txt (nvidia-smi)
 and steps.txt (each step's seconds), equal-time.txt (emcv-demo's summary). Writes the document (docs/results.md unless
 --doc) atomically: the blocks gpu-context, gpu-teaser, gpu-scaling, gpu-cost (with the statistics' grain K),
@@ -10,6 +11,7 @@ gpu-equal-time and gpu-targets (issue 18's GPU targets, judged only where the
 runs' automatic clock was GPU timestamps, i.e. on a hardware renderer)."""
 import argparse
 import glob
+import gzip
 import os
 import re
 import subprocess
@@ -24,6 +26,19 @@ PAPER_LABEL = {"separable-17": "separable", "spvg": "spvg", "cv": "cv"}
 SCALING = ["burley-16", "separable-17", "spvg", "cv", "cv-notex"]
 
 
+def read_csv(path):
+    """A run's CSV, or its gzip-compressed copy PATH.gz (the stored runs in docs/results/gpu/ are compressed)."""
+    if not os.path.exists(path) and os.path.exists(path + ".gz"):
+        with gzip.open(path + ".gz", "rt") as f:
+            return ev.read_csv_text(f.read())
+    return ev.read_csv(path)
+
+
+def csvs(pattern):
+    """The CSVs matching PATTERN (ending in .csv), plain or gzip-compressed, by their plain name."""
+    return sorted({p[:-3] if p.endswith(".gz") else p for p in glob.glob(pattern) + glob.glob(pattern + ".gz")})
+
+
 def size_key(size):
     w, h = (int(v) for v in size.split("x"))
     return w * h
@@ -31,11 +46,11 @@ def size_key(size):
 
 def teaser(run_dir, size):
     first, last = ev.SWITCH_FRAME, ev.SWITCH_FRAME + 29
-    quality = [r for r in ev.read_csv(os.path.join(run_dir, f"demo-{size}", "metrics.csv"))
+    quality = [r for r in read_csv(os.path.join(run_dir, f"demo-{size}", "metrics.csv"))
                if first <= int(r["frame"]) <= last]
     cost = []
-    for path in sorted(glob.glob(os.path.join(run_dir, f"eval-{size}-run*.csv"))):
-        cost += [r for r in ev.read_csv(path) if first <= int(r["frame"]) <= last]
+    for path in csvs(os.path.join(run_dir, f"eval-{size}-run*.csv")):
+        cost += [r for r in read_csv(path) if first <= int(r["frame"]) <= last]
     rows = {}
     for m in TEASER:
         q = [r for r in quality if r["method"] == m]
@@ -73,7 +88,7 @@ def clock_of(rows):
 
 
 def scaling(run_dir):
-    rows = [r for path in glob.glob(os.path.join(run_dir, "scaling-*.csv")) for r in ev.read_csv(path)]
+    rows = [r for path in csvs(os.path.join(run_dir, "scaling-*.csv")) for r in read_csv(path)]
     groups = {}
     for r in rows:
         if int(r["frame"]) < 1:  # frame 0 compiles and warms up
@@ -254,8 +269,8 @@ def main():
     sizes = sorted({re.match(r"demo-(.*)", os.path.basename(p)).group(1)
                     for p in glob.glob(os.path.join(run_dir, "demo-*")) if os.path.isdir(p)}, key=size_key)
     # The renderer's own choice of clock (--timing auto) decides whether these are a GPU's times.
-    auto_clock = clock_of([r for path in glob.glob(os.path.join(run_dir, "eval-*-run*.csv"))
-                           for r in ev.read_csv(path)])
+    auto_clock = clock_of([r for path in csvs(os.path.join(run_dir, "eval-*-run*.csv"))
+                           for r in read_csv(path)])
     hardware = auto_clock == "gpu"
     why_not = f"the runs' automatic clock (--timing auto on {renderer}) is {auto_clock}, not GPU timestamps"
     text = open(a.doc).read()

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: MIT
-"""What the SSS passes cost, method against method, at equal samples (docs/accuracy-vs-time.md, "SSS cost at
-equal samples").
+"""What the SSS passes cost, method against method, at equal samples (docs/notebook/2026-12-07-results-adaptive-cost.md,
+"The SSS passes at equal samples").
 
 Runs emcv-eval (methods side by side, frame by frame) RUNS times for each build directory given, the builds
 interleaved run by run so that the machine's load hits them alike, and prints one markdown row per build and

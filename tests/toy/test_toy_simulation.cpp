@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The toy experiment (supplementary section 3) against the paper's Table 1 and the closed-form alpha*.
-// Every bound is derived in docs/toy.md, section "Test tolerances".
+// Every bound is derived in docs/notebook/2026-12-07-results-toy.md, section "Test tolerances".
 #include <catch2/catch_test_macros.hpp>
 
 #include <cmath>
@@ -26,7 +26,7 @@ const scenario_summary& dynamic_summary() {
 }
 
 // The paper's run is one draw X from the distribution whose mean we estimate by m over N seeds, so
-// Var(m - X) = sd^2 (1 + 1/N); 4 standard deviations is a Bonferroni bound over the 12 cells (docs/toy.md).
+// Var(m - X) = sd^2 (1 + 1/N); 4 standard deviations is a Bonferroni bound over the 12 cells (docs/notebook/2026-12-07-results-toy.md).
 void check_cells_near_paper(const scenario_summary& s, const std::array<double, residual_count>& paper) {
     const double n = static_cast<double>(seed_count);
     for (std::size_t k = 0; k < residual_count; ++k) {
@@ -43,7 +43,7 @@ void check_cells_near_paper(const scenario_summary& s, const std::array<double, 
 // 4 per-seed sd, wide enough to hold a neighbouring policy's value (static Res_EMCM's holds Res_SF, dynamic
 // ResHat's holds Res_EMCM and Res_GT). Here each mean is pinned to 4 standard errors, 4 sd / sqrt(N): a change in
 // what a policy computes (a mixed-up policy, a different coefficient, a different seed stream) moves its mean by
-// more than that, while a change in the last bits of libm cannot (docs/toy.md, "Test tolerances").
+// more than that, while a change in the last bits of libm cannot (docs/notebook/2026-12-07-results-toy.md, "Test tolerances").
 constexpr std::array<double, residual_count> ours_static_500 = {0.032104, 0.015644, 0.0058955,
                                                                 0.0083573, 0.033220, 0.0056862};
 constexpr std::array<double, residual_count> ours_dynamic_500 = {0.57603, 0.37650, 0.37450, 0.14325, 0.084180, 0.13443};
@@ -126,7 +126,7 @@ TEST_CASE("static alpha*: pooled Cov/Var over every sample converges to 0.4767",
 }
 
 TEST_CASE("in-frame constant control: alpha converges to 2 ln 2 = 1.386", "[toy]") {
-    // E[alpha_t] = 2 ln 2 exactly for every frame with Var_w(G) > 0 (docs/toy.md), so the mean over N seeds
+    // E[alpha_t] = 2 ln 2 exactly for every frame with Var_w(G) > 0 (docs/notebook/2026-12-07-results-toy.md), so the mean over N seeds
     // lies within 4 sd / sqrt(N) of it.
     const auto& s = dynamic_summary();
     const double tolerance = 4.0 * s.inframe_alpha.sd / std::sqrt(static_cast<double>(seed_count));

@@ -48,7 +48,7 @@ struct toy_config {
     double eta_res = 0.2;            ///< weight of each residual's exponential moving variance
     double eta_sf_ema = 0.05;        ///< EMA weight that smooths alpha_SF in Res_SF+EMA (open in the paper)
     int t0 = 0;                      ///< time t of frame 1 in h2(t) = 1 + 3 sin(t/10) (open in the paper)
-    first_frame first = first_frame::primed;  ///< open in the paper, see docs/toy.md
+    first_frame first = first_frame::primed;  ///< open in the paper, see docs/notebook/2026-12-07-results-toy.md
     gt_alpha_source gt = gt_alpha_source::paper;
 };
 
