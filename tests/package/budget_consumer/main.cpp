@@ -185,16 +185,10 @@ int main(int argc, char** argv) {
         }
     }
 
-    // Resources, at app.glsl's bindings. The histories start as the encoded fresh state.
+    // Resources, at app.glsl's bindings. The histories start cleared to zero, which decodes as the fresh state.
     using emcv::port::EmcvEmcm2;
     std::vector<EmcvEmcm2> states(kPixels, emcv::port::emcv_emcm2_init());
-    std::vector<float> fresh_a(4 * kPixels), fresh_b(2 * kPixels);
-    for (int i = 0; i < kPixels; ++i) {
-        const auto a = emcv::port::emcv_history_encode_emcm2_cov(states[i]);
-        const auto b = emcv::port::emcv_history_encode_emcm2_means(states[i]);
-        std::memcpy(&fresh_a[4 * i], &a, sizeof(float) * 4);
-        std::memcpy(&fresh_b[2 * i], &b, sizeof(float) * 2);
-    }
+    const std::vector<float> fresh_a(4 * kPixels, 0.0f), fresh_b(2 * kPixels, 0.0f);
     GLuint history_a[2], history_b[2], plan, taken, material, tracked;
     glCreateTextures(GL_TEXTURE_2D, 2, history_a);
     glCreateTextures(GL_TEXTURE_2D, 2, history_b);
