@@ -132,7 +132,7 @@ string(REPLACE "@EMCV_SEMICOLON@" ";" kept "${kept}")
 string(REPLACE "@EMCV_LBRACKET@" "[" kept "${kept}")
 string(REPLACE "@EMCV_RBRACKET@" "]" kept "${kept}")
 foreach(name IN LISTS dropped_names ITEMS stage_input comp_main)
-  if(kept MATCHES "[^A-Za-z0-9_]${name}[^A-Za-z0-9_]")
+  if(kept MATCHES "[^A-Za-z0-9_.]${name}[^A-Za-z0-9_]")  # not a struct member of that name
     message(FATAL_ERROR "emcv_port_hlsl.cmake: a function kept for the module uses the kernel's '${name}'")
   endif()
 endforeach()
