@@ -8,8 +8,9 @@
 #  3. emcv_port_reference.hlsl compiles with glslang's HLSL front end, gives every resource an explicit
 #     register in a space, no two resources the same (register, space), and compiles back to the descriptor
 #     sets and bindings of the GLSL it was translated from;
-#  4. every function of emcv_port.glsl is a function of the HLSL, and the HLSL is the translation of the
-#     source tree's reference kernel (not stale).
+#  4. every function of emcv_port.glsl is a function of the HLSL, and the HLSL files (emcv_port_reference.hlsl
+#     and the module emcv_port.hlsl, whose use tests/hlsl checks) are the translation of the source tree's port
+#     and reference kernel (not stale).
 cmake_minimum_required(VERSION 3.21)
 foreach(var SHADER_DIR SOURCE_DIR GLSLANG SPIRV_CROSS WORK)
   if(NOT DEFINED ${var})
@@ -20,7 +21,8 @@ file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
 set(glsl_file "${SHADER_DIR}/emcv_port.glsl")
 set(hlsl_file "${SHADER_DIR}/emcv_port_reference.hlsl")
-foreach(f "${glsl_file}" "${hlsl_file}")
+set(module_file "${SHADER_DIR}/emcv_port.hlsl")
+foreach(f "${glsl_file}" "${hlsl_file}" "${module_file}")
   if(NOT EXISTS "${f}")
     message(FATAL_ERROR "not installed: ${f}")
   endif()
@@ -76,7 +78,7 @@ run("emcv_port.glsl, Vulkan SPIR-V" "${GLSLANG}" -V --target-env vulkan1.0 "${sh
 # 3. the HLSL: fresh, compiles, one register per resource, the GLSL's sets and bindings
 run("translating the source tree's reference kernel" "${CMAKE_COMMAND}" "-DGLSLANG=${GLSLANG}"
     "-DSPIRV_CROSS=${SPIRV_CROSS}" "-DPORT_GLSL=${glsl_file}" "-DKERNEL=${SOURCE_DIR}/shaders/reference/port_reference.glsl"
-    "-DWORK=${WORK}/hlsl" "-DOUTPUT=${WORK}/emcv_port_reference.hlsl" -P "${SOURCE_DIR}/cmake/emcv_port_hlsl.cmake")
+    "-DWORK=${WORK}/hlsl" "-DOUTPUT=${WORK}/emcv_port_reference.hlsl" "-DMODULE=${WORK}/emcv_port.hlsl" -P "${SOURCE_DIR}/cmake/emcv_port_hlsl.cmake")
 file(READ "${hlsl_file}" hlsl)
 run("emcv_port_reference.hlsl, glslang HLSL front end" "${GLSLANG}" -D -e main -S comp -V "${hlsl_file}"
     -o "${WORK}/hlsl.spv")
@@ -137,9 +139,12 @@ foreach(f IN LISTS glsl_functions)
   endif()
 endforeach()
 # last, so that a broken file reports what is broken rather than only that it differs
-file(READ "${WORK}/emcv_port_reference.hlsl" hlsl_fresh)
-if(NOT hlsl STREQUAL hlsl_fresh)
-  message(FATAL_ERROR "stale: ${hlsl_file} is not the translation of the source tree's reference kernel "
-                      "(rebuild emcv, then install; compare with ${WORK}/emcv_port_reference.hlsl)")
-endif()
+foreach(name emcv_port_reference.hlsl emcv_port.hlsl)
+  file(READ "${SHADER_DIR}/${name}" installed_hlsl)
+  file(READ "${WORK}/${name}" fresh_hlsl)
+  if(NOT installed_hlsl STREQUAL fresh_hlsl)
+    message(FATAL_ERROR "stale: ${SHADER_DIR}/${name} is not the translation of the source tree's port and reference "
+                        "kernel (rebuild emcv, then install; compare with ${WORK}/${name})")
+  endif()
+endforeach()
 message(STATUS "shader files: OK (${function_count} functions, ${resource_count} registers: ${seen})")
