@@ -22,7 +22,7 @@
 //            Every formula is the port's (include/emcv/port/history.h, budget.h, ema.h, cv.h), the code the
 //            GPU runs: this header only loops over pixels, in the order of shaders/adaptive/samples.comp.glsl
 //            and the burley pass's count and history update. budget_solve finds the lambda that the GPU's
-//            solve pass solves (shaders/adaptive/budget_block.h), bit for bit (the bins added in
+//            solve pass solves (shaders/module/emcv_adaptive_budget.glsl), bit for bit (the bins added in
 //            the same order, the same float operations) when compiled without FMA contraction
 //            (-ffp-contract=off, as the port asks).
 //            The per-pixel states are the port's own types, so a history kept in a GPU storage buffer and
@@ -165,7 +165,7 @@ void check_state_read(const sampling_params& p, const State* states, std::size_t
     check_pixels(out, pixels, where, "out must not be null");
 }
 
-/// One pixel's push, as the burley pass's history update (shaders/adaptive/history_io.h; n > 0 only).
+/// One pixel's push, as the burley pass's history update (shaders/module/emcv_adaptive_history.glsl; n > 0 only).
 inline void push(const sampling_params&, float eta, port::EmcvEmcm2& s, float f, float g, float n) {
     port::emcv_history_push_cv(s, f, g, eta, n);
 }
@@ -380,7 +380,7 @@ inline budget_histogram make_budget_histogram() noexcept {
 }
 
 /// Adds one pixel's variance code to the histogram, as the GPU's emcv_budget_add
-/// (shaders/adaptive/budget_block.h): emcv_history_no_samples() counts as a zero pixel (its share goes to the
+/// (shaders/module/emcv_adaptive_budget.glsl): emcv_history_no_samples() counts as a zero pixel (its share goes to the
 /// others), a code without a variance (negative or NaN) as a default pixel (it takes the budget itself, outside
 /// the solve), a variance in the bin of its sigma.
 inline void budget_add(budget_histogram& h, float sigma2) noexcept {
@@ -476,7 +476,7 @@ inline void sampling_shrink(const sampling_params& p, const budget_prior& prior,
 /// and _high_bits() whose total, the bins' samples added in bin order (empty bins skipped: they add exactly 0),
 /// reaches the plan, else the high bound. Found here by EMCV_BUDGET_SOLVE_STEPS bisection steps (`total <
 /// planned` moves the low end, the high end is returned) and on the GPU by a 64-way search
-/// (shaders/adaptive/budget_block.h); the total is monotone in lambda, so both find the same bits (compiled
+/// (shaders/module/emcv_adaptive_budget.glsl); the total is monotone in lambda, so both find the same bits (compiled
 /// with -ffp-contract=off). Unlike the shader it leaves the histogram as it is (clear it with
 /// make_budget_histogram()).
 /// Throws std::invalid_argument when the parameters are invalid (the mode need not be budget: p.budget is

@@ -59,7 +59,7 @@ history::history(const method& m, int width, int height, const gl::preprocess_op
     : layout_(checked_layout(m)), budget_mode_(sampling_mode_of(shaders.defines).budget),
       block_(static_cast<int>(tunable_value(shaders.defines, "EMCV_HISTORY_BLOCK"))) {
     if (width < 1 || height < 1) throw std::runtime_error("adaptive history: empty size");
-    // One texel per K x K block (EMCV_HISTORY_BLOCK), the grid rounded up (adaptive/history_io.h, emcv_adaptive_grid).
+    // One texel per K x K block (EMCV_HISTORY_BLOCK), the grid rounded up (module/emcv_adaptive_history.glsl, emcv_adaptive_grid).
     pixel_width_ = width;
     pixel_height_ = height;
     width_ = (width + block_ - 1) / block_;

@@ -8,7 +8,7 @@
 //                     solves the scale of N = clamp(lambda sigma, ...) (include/emcv/port/budget.h). Built on
 //                     first use: under a quality target the renderer never records it (tests do, for its N).
 //   sss-burley        the renderer's burley pass built with the method's define: N per pixel (under a quality
-//                     target planned by the pass itself from the reprojected history, adaptive/samples.h;
+//                     target planned by the pass itself from the reprojected history, module/emcv_adaptive_plan.glsl;
 //                     under a budget from sigma and lambda), then this frame's (f, G) pushed into the history
 //                     as a batch of N; under a budget, when the next frame shows the same view, its variant
 //                     then plans the next frame as adaptive-samples would, and that frame records no samples

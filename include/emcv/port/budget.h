@@ -20,7 +20,7 @@
 //            their sum of 1 / frames, from which the solve stores the next frame's prior (mean_sigma2,
 //            between_variance; port/history.h, emcv_history_frame_prior).
 //            The solve (emcv::budget_solve in C++, one workgroup's dispatch on the GPU,
-//            shaders/adaptive/budget_block.h) searches the bit pattern of lambda (positive floats order as
+//            shaders/module/emcv_adaptive_budget.glsl) searches the bit pattern of lambda (positive floats order as
 //            their bits) for the smallest whose total, the bins added in bin order, reaches the plan: C++ by
 //            bisection, the GPU 64 candidates a round; the total is monotone, so both give the same lambda.
 // USAGE      uint bin = emcv_budget_bin(sigma); count[bin] += 1; fraction[bin] += emcv_budget_fraction(sigma);
