@@ -100,9 +100,9 @@ struct method_run {
 
 std::vector<method> methods_to_render(const std::vector<method>& requested) {
     std::vector<method> out = requested;
-    bool has_reference = false;
-    for (const method& m : requested) has_reference = has_reference || m.type == method::kind::reference;
-    if (!has_reference) out.push_back(*parse_method("reference"));
+    bool has_truth = false;
+    for (const method& m : requested) has_truth = has_truth || row_of(m).ground_truth;
+    if (!has_truth) out.push_back(ground_truth_method());
     return out;
 }
 
@@ -131,7 +131,7 @@ run_result run_headless(const scene& s, const options& o, int frames, timing clo
     std::vector<method_run> runs;
     std::size_t reference_index = 0;
     for (const method& m : methods_to_render(o.methods)) {
-        if (m.type == method::kind::reference) reference_index = runs.size();
+        if (row_of(m).ground_truth) reference_index = runs.size();
         runs.push_back({m, renderer(s, m, ro), std::nullopt, std::nullopt});
         result.method_names.push_back(m.name());
     }

@@ -26,7 +26,7 @@ const std::vector<method_row>& method_table() {
          sss_passes::separable, std::nullopt, {}},
         {k::reference, "reference", "Burley with 1024 samples per pixel, reused while its inputs hold",
          {"samples per pixel", 1, 1 << 20, {}, default_reference_samples, false}, default_reference_samples,
-         sss_passes::burley, std::nullopt, {}},
+         sss_passes::burley, std::nullopt, {}, true},
         {k::spvg, "spvg", "adaptive: N from the moving variance of f (SPVG 2020)", {}, 0, sss_passes::none, e::spvg, {}},
         {k::cv, "cv", "adaptive: N from the residual variance of the control variate, EMCM over (f, G)", {}, 0,
          sss_passes::none, e::cv, {}},
@@ -123,6 +123,12 @@ std::optional<method> parse_method(std::string_view text) {
 }
 
 method make_reference(int samples) { return method{method::kind::reference, samples}; }
+
+method ground_truth_method() {
+    for (const method_row& r : method_table())
+        if (r.ground_truth) return method{r.type, r.parameter.default_value};
+    throw std::logic_error("method table: no row is the ground truth");
+}
 
 std::vector<method> all_methods() {
     std::vector<method> out;

@@ -68,6 +68,10 @@ struct method_row {
     std::optional<emcv::sampling_estimator> estimator;  ///< set: an adaptive method, choosing N with this estimator
     /// The define that selects its sample sequence in the burley pass's taps (render/burley_taps.h); empty: R2
     std::string_view sample_define;
+    /// The converged integral every PSNR is measured against (the reference): rendered again only when its inputs
+    /// change (holds_result), never jittered or resolved (the truth is the unblurred integral), and added to a run
+    /// that does not ask for it (headless_run). One row has it.
+    bool ground_truth = false;
 
     /// The SSS passes it records: sss_passes::adaptive for an adaptive method, else fixed_passes.
     sss_passes passes() const { return estimator ? sss_passes::adaptive : fixed_passes; }
@@ -81,6 +85,10 @@ struct method_row {
     bool samples_heatmap() const { return estimator.has_value(); }
     /// --out also writes alpha-NNNN.png (the control-variate coefficient): the layout that holds C_fG / C_GG.
     bool alpha_heatmap() const { return history() == history_layout::emcm2; }
+    /// Its last result is shown again while its inputs (camera pose, light radiance) hold: the ground truth.
+    bool holds_result() const { return ground_truth; }
+    /// The temporal resolve and its camera jitter apply to it: every method but the ground truth.
+    bool resolves() const { return !ground_truth; }
 };
 
 /// Every method, in the order of `--method all` and of the summary.
@@ -111,6 +119,8 @@ std::vector<method> all_methods();
 
 /// The reference with an explicit sample count (tests: convergence against a 4x-sample render).
 method make_reference(int samples);
+/// The ground truth (the row with ground_truth) at its default sample count.
+method ground_truth_method();
 
 /// "diffuse, burley-N (N = 1..1024), ...": the accepted names, for error messages.
 std::string accepted_method_names();

@@ -43,7 +43,7 @@ frame_planner::frame_planner(const scene& s, const method& m, int width, int hei
                              const sampling_mode& sampling, bool jitter)
     : s_(&s), m_(m), width_(width), height_(height), resolve_(resolve), budget_(sampling.budget),
       plan_ahead_(sampling.budget && sampling.plan_ahead),
-      jitter_(jitter && resolve == resolve_mode::taa && m.type != method::kind::reference), casters_(shadow_casters(s)) {
+      jitter_(jitter && resolve == resolve_mode::taa && row_of(m).resolves()), casters_(shadow_casters(s)) {
     for (const object& o : s.objects)
         if (s.materials.at(static_cast<std::size_t>(o.material)).scatters()) sss_bounds_.push_back(object_bounds(s, o));
     passes_.reserve(casters_.size() + 8);
@@ -59,10 +59,10 @@ const std::vector<planned_pass>& frame_planner::plan(int frame, const std::vecto
     const bool visible = m_.scatters() && std::any_of(sss_bounds_.begin(), sss_bounds_.end(), [&](const bounding_sphere& b) {
                              return sphere_in_frustum(v.view_proj, b);
                          });
-    // The reference is the converged integral: it is rendered again only when its inputs changed (camera pose,
+    // The ground truth is the converged integral: it is rendered again only when its inputs changed (camera pose,
     // light radiance; objects do not move in this scene model), else its last result is shown again.
     reused_ = false;
-    if (m_.type == method::kind::reference && visible) {
+    if (row_of(m_).holds_result() && visible) {
         inputs_[0] = v.position.x; inputs_[1] = v.position.y; inputs_[2] = v.position.z;
         inputs_[3] = v.target.x; inputs_[4] = v.target.y; inputs_[5] = v.target.z;
         for (std::size_t i = 0; i < s.lights.size(); ++i) {
@@ -110,7 +110,7 @@ const std::vector<planned_pass>& frame_planner::plan(int frame, const std::vecto
     if (!scatters_) planned_frame_ = -1;  // no burley pass planned the next frame, and no history was updated here
     passes_.push_back({pass_id::composite, 0, 0});
     // The reference is the converged image an engine's resolve would converge to: it is compared raw.
-    if (resolve_ == resolve_mode::taa && m_.type != method::kind::reference) passes_.push_back({pass_id::resolve, 0, 0});
+    if (resolve_ == resolve_mode::taa && row_of(m_).resolves()) passes_.push_back({pass_id::resolve, 0, 0});
     return passes_;
 }
 

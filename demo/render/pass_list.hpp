@@ -100,7 +100,7 @@ public:
     /// and store its noise (EMCV_RENDER_FLAG_SSS_NOISE).
     bool resolves_sss_noise() const {
         return scatters_ && samples_randomly(m_) && resolve_ == resolve_mode::taa && !jitter_ &&
-               m_.type != method::kind::reference;
+               row_of(m_).resolves();
     }
     /// Whether the last planned frame's counts were planned by the frame before it (its burley pass had
     /// plans_next): it records no samples pass, and its history is updated where that frame left it (in place,

@@ -118,7 +118,7 @@ struct renderer::impl {
             stats.max_spp = static_cast<int>(gpu_stats.sample_max);
             stats.mean_spp = gpu_stats.sss_pixels > 0 ? double(gpu_stats.sample_sum) / gpu_stats.sss_pixels : 0.0;
         }
-        if (m.type == method::kind::reference) {
+        if (row_of(m).holds_result()) {
             held_reference.mean_spp = stats.mean_spp;
             held_reference.max_spp = stats.max_spp;
             held_reference.sss_pixels = stats.sss_pixels;

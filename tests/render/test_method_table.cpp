@@ -114,6 +114,24 @@ TEST_CASE("the reference's planner drops its SSS passes while its inputs hold, a
     CHECK(sss_passes_of(planner.plan(3, {0.0f})) == 1);  // nothing held after a reset
 }
 
+TEST_CASE("one row is the ground truth: it holds its result and a resolving run never resolves it") {
+    int truths = 0;
+    for (const method_row& r : method_table()) truths += r.ground_truth ? 1 : 0;
+    CHECK(truths == 1);  // headless_run measures every method against the one it adds
+    const method truth = ground_truth_method();
+    CHECK(row_of(truth).holds_result());
+    CHECK_FALSE(row_of(truth).resolves());
+    const std::vector<method> run{*parse_method("cv"), *parse_method("burley-8"), truth};
+    // the planner of a resolving run records the resolve for every method but the ground truth
+    const scene s = emcv::test::sphere_on_floor();
+    for (const method& m : run) {
+        frame_planner planner(s, m, 48, 32, resolve_mode::taa, sampling_mode{});
+        bool resolve = false;
+        for (const planned_pass& p : planner.plan(0)) resolve = resolve || p.id == pass_id::resolve;
+        CHECK(resolve == (m != truth));
+    }
+}
+
 TEST_CASE("the tunables are exactly the #ifndef blocks of the port headers") {
     // Every `#ifndef NAME` line followed by `#define NAME value` that is not an include guard (NAME ends in _H).
     std::set<std::string> in_headers;

@@ -101,7 +101,7 @@ int run(const eval::options& o) {
         for (std::size_t i = 0; i < renderers.size(); ++i) {
             const demo::frame_stats& st = renderers[i].render(frame);
             const std::string name = o.methods[i].name();
-            const bool resolved = o.resolve == demo::resolve_mode::taa && o.methods[i].type != demo::method::kind::reference;
+            const bool resolved = o.resolve == demo::resolve_mode::taa && demo::row_of(o.methods[i]).resolves();
             rows.push_back({name, frame, 0.0, 0.0, st.mean_spp, st.max_spp, st.sss_pixels, lights,
                             demo::resolve_label(resolved ? o.resolve : demo::resolve_mode::none, o.jitter), false});
             if (dump) {
