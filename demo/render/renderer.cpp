@@ -49,6 +49,7 @@ struct renderer::impl {
     method m;
     render_options o;
     shader_setup shaders;
+    program_cache cache;  // every program of the passes and of the adaptive history
     pass_programs programs;
     gpu_resources res;
     std::optional<adaptive::history> history;  // the adaptive methods only (method table)
@@ -66,9 +67,9 @@ struct renderer::impl {
 
     impl(const scene& sc, method me, render_options op)
         : s(sc), m(me), o(validated(std::move(op))), shaders(make_shader_setup(o)),
-          res(make_gpu_resources(s, m, o.width, o.height)), planner(s, m, o.width, o.height, o.resolve, sampling_mode_of(o.defines), o.jitter), constants(s),
+          cache(shaders.preprocess, shaders.shader_dir), programs(cache), res(make_gpu_resources(s, m, o.width, o.height)), planner(s, m, o.width, o.height, o.resolve, sampling_mode_of(o.defines), o.jitter), constants(s),
           light_scale(s.lights.size(), 1.0f), stamps(make_timestamps(o.timing_mode)) {
-        prepare_pass_programs(programs, shaders, s, m, o.resolve);
+        prepare_pass_programs(programs, s, m, o.resolve);
         make_history(m);
         if (o.resolve == resolve_mode::taa) make_resolve_targets(res, !o.jitter);
         for (std::size_t id = 0; id < pass_id_count; ++id)
@@ -81,7 +82,7 @@ struct renderer::impl {
     /// program that does not compile leaves the renderer as it was.
     void make_history(const method& next) {
         std::optional<adaptive::history> made;
-        if (is_adaptive(next)) made.emplace(next, o.width, o.height, shaders.preprocess, shaders.shader_dir);
+        if (is_adaptive(next)) made.emplace(next, o.width, o.height, cache);
         history = std::move(made);
         keeps_gbuffer = false;  // the next frame starts fresh
         if (history) {
@@ -214,7 +215,7 @@ std::vector<frame_times> renderer::take_times(bool wait) { return p_->take_times
 void renderer::set_method(const method& m) {
     // First the programs, which may not compile: then the renderer keeps its method (a program once built is
     // kept, which harms nothing).
-    prepare_pass_programs(p_->programs, p_->shaders, p_->s, m, p_->o.resolve);
+    prepare_pass_programs(p_->programs, p_->s, m, p_->o.resolve);
     p_->make_history(m);
     p_->m = m;
     p_->planner = frame_planner(p_->s, m, p_->o.width, p_->o.height, p_->o.resolve, sampling_mode_of(p_->o.defines),

@@ -208,29 +208,22 @@ shader_setup make_shader_setup(const render_options& o) {
     return out;
 }
 
-void prepare_pass_programs(pass_programs& p, const shader_setup& shaders, const scene& s, const method& m,
-                           resolve_mode resolve) {
-    const gl::preprocess_options& pre = shaders.preprocess;
-    const fs::path dir = shaders.shader_dir / "render";
-    const auto compute = [&](gl::program& program, const char* file) {
-        if (!program.id()) program = gl::program::compute(dir / file, pre);
-    };
-    if (!p.gbuffer.id()) p.gbuffer = gl::program::graphics(dir / "gbuffer.vert.glsl", dir / "gbuffer.frag.glsl", pre);
-    if (!p.shadow.id() && !shadow_casters(s).empty())
-        p.shadow = gl::program::graphics(dir / "shadow.vert.glsl", dir / "shadow.frag.glsl", pre);
-    compute(p.lighting, "lighting.comp.glsl");
+void prepare_pass_programs(pass_programs& out, const scene& s, const method& m, resolve_mode resolve) {
+    pass_programs p = out;  // set only once every program has compiled: a failure leaves `out` as it was
+    program_cache& cache = *p.cache;
+    p.gbuffer.program = &cache.graphics("render/gbuffer.vert.glsl", "render/gbuffer.frag.glsl");
+    p.shadow.program = shadow_casters(s).empty() ? nullptr
+                                                 : &cache.graphics("render/shadow.vert.glsl", "render/shadow.frag.glsl");
+    p.lighting.program = &cache.compute("render/lighting.comp.glsl");
     // The adaptive methods' burley program is their history's (adaptive::history), built with their define.
-    if (row_of(m).passes() == sss_passes::burley) {
-        gl::program& burley = p.burley[std::string(row_of(m).sample_define)];
-        if (!burley.id()) {
-            gl::preprocess_options with = pre;
-            for (const auto& d : row_of(m).shader_defines()) with.defines.push_back(d);
-            burley = gl::program::compute(dir / "sss_burley.comp.glsl", with);
-        }
-    }
-    if (row_of(m).passes() == sss_passes::separable) compute(p.separable, "sss_separable.comp.glsl");
-    compute(p.composite, "composite.comp.glsl");
-    if (resolve == resolve_mode::taa) compute(p.resolve, "resolve.comp.glsl");
+    p.burley.program = row_of(m).passes() == sss_passes::burley
+                           ? &cache.compute("render/sss_burley.comp.glsl", row_of(m).shader_defines())
+                           : nullptr;
+    p.separable.program =
+        row_of(m).passes() == sss_passes::separable ? &cache.compute("render/sss_separable.comp.glsl") : nullptr;
+    p.composite.program = &cache.compute("render/composite.comp.glsl");
+    p.resolve.program = resolve == resolve_mode::taa ? &cache.compute("render/resolve.comp.glsl") : nullptr;
+    out = p;
 }
 
 void gpu_resources::draw_objects(bool with_albedo_maps) const {

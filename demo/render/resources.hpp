@@ -14,6 +14,7 @@
 #include "gl/program.hpp"
 #include "gpu_types.hpp"
 #include "method.hpp"
+#include "program_cache.hpp"
 #include "render_options.hpp"
 #include "scene/scene.hpp"
 #include "view.hpp"
@@ -27,15 +28,18 @@ class history;  // demo/render/adaptive/history.hpp
 /// Shadow maps are square, this many texels a side.
 inline constexpr int shadow_resolution = 1024;
 
-/// The GLSL programs of the passes (the adaptive passes' own live in adaptive::history). Only the programs of
-/// passes the scene and method can record are built (prepare_pass_programs); the others stay empty, and using
-/// one throws.
+/// The programs the passes use, from one program_cache (which adaptive::history draws the adaptive passes' from
+/// too). Only the programs of passes the scene and method can record are set (prepare_pass_programs); using
+/// another throws.
 struct pass_programs {
-    gl::program gbuffer, shadow, lighting, separable, composite;
-    gl::program resolve;  ///< --resolve taa only
-    /// The burley pass of burley-N, the reference and their variants, one program per sample sequence: keyed by
-    /// the method row's sample_define ("" for R2), built with its shader_defines().
-    std::map<std::string, gl::program, std::less<>> burley;
+    explicit pass_programs(program_cache& programs) : cache(&programs) {}
+    program_cache* cache;
+    program_ref gbuffer{nullptr, "gbuffer"}, shadow{nullptr, "shadow"}, lighting{nullptr, "lighting"};
+    program_ref separable{nullptr, "sss-separable"}, composite{nullptr, "composite"};
+    program_ref resolve{nullptr, "resolve"};  ///< --resolve taa only
+    /// The burley pass of burley-N, the reference and their variants, built with the row's shader_defines();
+    /// an adaptive method's is its history's.
+    program_ref burley{nullptr, "sss-burley"};
 };
 
 /// The shader options every pass is built with: include roots (render_options, else $EMCV_SHADER_DIR /
@@ -45,12 +49,11 @@ struct shader_setup {
     std::filesystem::path shader_dir;
 };
 shader_setup make_shader_setup(const render_options& o);
-/// Builds those of p's programs that method m can record on scene s and p lacks: the G-buffer, lighting and
+/// Sets p's programs for what method m can record on scene s, from p's cache: the G-buffer, lighting and
 /// composite passes always; the shadow pass where a light casts shadows; burley-N's and the reference's burley
 /// pass, or the separable passes; the resolve under resolve taa. A method switch calls it again for the new
-/// method (a program once built is kept). A renderer compiles no program it never dispatches.
-void prepare_pass_programs(pass_programs& p, const shader_setup& shaders, const scene& s, const method& m,
-                           resolve_mode resolve);
+/// method (a program once built stays in the cache). A renderer compiles no program it never dispatches.
+void prepare_pass_programs(pass_programs& p, const scene& s, const method& m, resolve_mode resolve);
 
 struct draw_call {
     GLsizei index_count = 0;

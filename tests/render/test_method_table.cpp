@@ -19,7 +19,9 @@
 
 #include "../gpu/gl_test_support.hpp"
 #include "gl/debug.hpp"
+#include "render/program_cache.hpp"
 #include "render/renderer.hpp"
+#include "render/resources.hpp"
 #include "render/tunables.hpp"
 #include "render_test_support.hpp"
 #include "scene/load.hpp"
@@ -271,4 +273,24 @@ TEST_CASE("a --define reaches the shaders: the floor and cap move spvg's sample 
     CHECK(cap4.max_spp <= 4);
     CHECK(cap4.max_spp >= 2);
     CHECK(messenger.error_count() == 0);
+}
+
+TEST_CASE("the program cache builds a program once per file and defines, and keeps nothing that failed") {
+    emcv::gl::context ctx = emcv::test::context_or_skip();
+    render_options o;
+    const shader_setup setup = make_shader_setup(o);
+    program_cache cache(setup.preprocess, setup.shader_dir);
+    const emcv::gl::program& lighting = cache.compute("render/lighting.comp.glsl");
+    CHECK(&cache.compute("render/lighting.comp.glsl") == &lighting);  // asked again: the same program
+    CHECK(cache.size() == 1);
+    const emcv::gl::program& sobol = cache.compute("render/sss_burley.comp.glsl", {{"EMCV_BURLEY_SOBOL", "1"}});
+    const emcv::gl::program& r2 = cache.compute("render/sss_burley.comp.glsl");
+    CHECK(&sobol != &r2);  // the defines are part of the key
+    CHECK(sobol.id() != r2.id());
+    CHECK(cache.size() == 3);
+    CHECK_THROWS(cache.compute("render/no_such_pass.comp.glsl"));
+    CHECK(cache.size() == 3);
+    // a pass whose program was not prepared says so instead of drawing with whatever is bound
+    program_ref unset{nullptr, "sss-separable"};
+    CHECK_THROWS_WITH(unset.use(), ContainsSubstring("sss-separable"));
 }

@@ -40,11 +40,6 @@ GLenum format_a(history_layout l) { return l == history_layout::emcm2 ? GL_RGBA3
 constexpr GLenum format_b = GL_RG32F;
 
 /// The shader options of the method's adaptive passes: the renderer's, plus the method's define.
-gl::preprocess_options with_method_define(gl::preprocess_options shaders, const method_row& row) {
-    for (const auto& d : row.shader_defines()) shaders.defines.push_back(d);
-    return shaders;
-}
-
 history_layout checked_layout(const method& m) {
     const history_layout l = row_of(m).history();
     if (l == history_layout::none)
@@ -56,24 +51,30 @@ history_layout checked_layout(const method& m) {
 
 history::history(const method& m, int width, int height, const gl::preprocess_options& shaders,
                  const std::filesystem::path& shader_dir)
-    : layout_(checked_layout(m)), budget_mode_(sampling_mode_of(shaders.defines).budget),
-      block_(static_cast<int>(tunable_value(shaders.defines, "EMCV_HISTORY_BLOCK"))) {
+    : history(m, width, height, std::make_shared<program_cache>(shaders, shader_dir)) {}
+
+history::history(const method& m, int width, int height, std::shared_ptr<program_cache> owned)
+    : history(m, width, height, *owned) {
+    owned_ = std::move(owned);
+}
+
+history::history(const method& m, int width, int height, program_cache& programs)
+    : layout_(checked_layout(m)), budget_mode_(sampling_mode_of(programs.base().defines).budget),
+      block_(static_cast<int>(tunable_value(programs.base().defines, "EMCV_HISTORY_BLOCK"))), programs_(&programs),
+      defines_(row_of(m).shader_defines()) {
     if (width < 1 || height < 1) throw std::runtime_error("adaptive history: empty size");
     // One texel per K x K block (EMCV_HISTORY_BLOCK), the grid rounded up (module/emcv_adaptive_history.glsl, emcv_adaptive_grid).
     pixel_width_ = width;
     pixel_height_ = height;
     width_ = (width + block_ - 1) / block_;
     height_ = (height + block_ - 1) / block_;
-    options_ = with_method_define(shaders, row_of(m));
-    samples_path_ = shader_dir / "adaptive" / "samples.comp.glsl";
     // The samples pass and its image are made where they run: in budget mode now, under a quality target only
-    // if asked for (record_samples).
+    // if asked for (record_samples). The solve needs no method define: one program serves every method.
     if (budget_mode_) {
         make_samples_pass();
-        solve_program_ = gl::program::compute(shader_dir / "adaptive" / "budget_solve.comp.glsl", options_);
+        solve_program_ = &programs_->compute("adaptive/budget_solve.comp.glsl");
     }
-    burley_path_ = shader_dir / "render" / "sss_burley.comp.glsl";
-    burley_program_ = gl::program::compute(burley_path_, options_);
+    burley_program_ = &programs_->compute("render/sss_burley.comp.glsl", defines_);
     // Zeroed: no histogram yet (the first frame's pixels have no variance and take B), lambda 0.
     budget_ = gl::buffer::create();
     const emcv::port::EmcvBudgetBlock empty{};
@@ -99,13 +100,13 @@ void history::bind_previous() const {
 }
 
 void history::make_samples_pass() {
-    samples_program_ = gl::program::compute(samples_path_, options_);
+    samples_program_ = &programs_->compute("adaptive/samples.comp.glsl", defines_);
     samples_ = make_cleared_target(GL_R32UI, width_, height_);
 }
 
 void history::record_samples() {
-    if (!samples_program_.id()) make_samples_pass();
-    samples_program_.use();
+    if (samples_program_ == nullptr) make_samples_pass();
+    samples_program_->use();
     bind_previous();
     bind_for_update();  // this frame's history, the samples image and the budget block, as the burley pass reads them
     glDispatchComputeIndirect(0);
@@ -117,7 +118,7 @@ void history::record_samples() {
 void history::solve_budget() {
     if (!budget_mode_) throw std::logic_error("adaptive history: only a budget has a histogram to solve");
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // every workgroup's histogram atomics before the solve reads
-    solve_program_.use();
+    solve_program_->use();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EMCV_ADAPTIVE_BUDGET, budget_.id());
     glDispatchCompute(1, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // lambda and the prior before the burley pass reads them
@@ -135,14 +136,14 @@ void history::bind_for_update() const {
 void history::use_burley(bool plans_next) {
     if (plans_next) {
         if (!budget_mode_) throw std::logic_error("adaptive history: only a budget plans the next frame's counts");
-        if (!burley_plan_next_program_.id()) {
-            gl::preprocess_options options = options_;
-            options.defines.emplace_back("EMCV_ADAPTIVE_PLAN_NEXT", "1");
-            burley_plan_next_program_ = gl::program::compute(burley_path_, options);
+        if (burley_plan_next_program_ == nullptr) {
+            program_cache::defines plans_next_defines = defines_;
+            plans_next_defines.emplace_back("EMCV_ADAPTIVE_PLAN_NEXT", "1");
+            burley_plan_next_program_ = &programs_->compute("render/sss_burley.comp.glsl", plans_next_defines);
         }
-        burley_plan_next_program_.use();
+        burley_plan_next_program_->use();
     } else {
-        burley_program_.use();
+        burley_program_->use();
     }
     bind_previous();
     bind_for_update();

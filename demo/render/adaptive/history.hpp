@@ -19,6 +19,7 @@
 
 #include <array>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -28,6 +29,7 @@
 #include "gl/image_io.hpp"
 #include "gl/program.hpp"
 #include "render/method.hpp"
+#include "render/program_cache.hpp"
 
 #include <emcv/port/budget.h>
 
@@ -42,12 +44,14 @@ struct texel {
 
 class history {
 public:
-    /// Allocates the textures of the method's history layout (cleared: every pixel starts fresh) and builds
-    /// the method's programs with its define (method table): its burley pass
-    /// (shader_dir/render/sss_burley.comp.glsl, which then takes N per pixel and updates the history after
-    /// sampling) and, in budget mode, the adaptive-samples pass (shader_dir/adaptive). Throws
-    /// gl::shader_error or std::runtime_error naming the problem, std::invalid_argument for a method that
-    /// keeps no history.
+    /// Allocates the textures of the method's history layout (cleared: every pixel starts fresh) and takes
+    /// the method's programs from `programs` (the renderer's cache, built with the row's shader_defines()): its
+    /// burley pass (render/sss_burley.comp.glsl, which then takes N per pixel and updates the history after
+    /// sampling) and, in budget mode, the adaptive-samples pass and the solve (adaptive/). The cache must outlive
+    /// the history. Throws gl::shader_error or std::runtime_error naming the problem, std::invalid_argument for a
+    /// method that keeps no history.
+    history(const method& m, int width, int height, program_cache& programs);
+    /// The same with a cache of its own over `shaders` and `shader_dir` (tests).
     history(const method& m, int width, int height, const gl::preprocess_options& shaders,
             const std::filesystem::path& shader_dir);
 
@@ -107,6 +111,7 @@ public:
     gl::float_image alpha() const;
 
 private:
+    history(const method& m, int width, int height, std::shared_ptr<program_cache> owned);
     /// Last frame's history textures at EMCV_ADAPTIVE_TEX_HISTORY_PREV_* (the reprojection's source).
     void bind_previous() const;
     /// Builds the samples program and allocates the samples image it writes (budget mode, or a test's first
@@ -118,9 +123,13 @@ private:
     int block_;           // EMCV_HISTORY_BLOCK: pixels per texel side
     int pixel_width_ = 0, pixel_height_ = 0;  // the viewport
     int width_ = 0, height_ = 0;              // the block grid: one texel per block
-    gl::preprocess_options options_;  // the method's shader options, for the samples program's first use
-    std::filesystem::path samples_path_, burley_path_;
-    gl::program samples_program_, burley_program_, burley_plan_next_program_, solve_program_;
+    std::shared_ptr<program_cache> owned_;  // the tests' constructor's own cache; the renderer passes its own
+    program_cache* programs_;
+    program_cache::defines defines_;  // the method's (method_row::shader_defines)
+    const gl::program* samples_program_ = nullptr;
+    const gl::program* burley_program_ = nullptr;
+    const gl::program* burley_plan_next_program_ = nullptr;
+    const gl::program* solve_program_ = nullptr;
     gl::buffer budget_;  // EmcvBudgetBlock: allocated in every mode (the passes declare it), used in budget mode
     std::array<gl::texture_2d, 2> a_, b_;  // ping-pong: [current_] is this frame's
     int current_ = 0;

@@ -50,10 +50,7 @@ void sss_burley(const frame_context& c, bool plans_next) {
         bind_previous_gbuffer(r);
         c.history->use_burley(plans_next);
     } else {
-        const auto burley = c.programs.burley.find(row_of(c.m).sample_define);
-        if (burley == c.programs.burley.end())
-            throw std::logic_error("sss_burley: no burley program for method " + c.m.name());
-        burley->second.use();
+        c.programs.burley.use();
     }
     glBindImageTexture(EMCV_RENDER_IMG_COUNT, r.counts.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32UI);
     glBindImageTexture(EMCV_RENDER_IMG_SSS_OUT, r.sss_out.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
