@@ -13,6 +13,7 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <algorithm>
 #include <string>
 #include <utility>
 #include <variant>
@@ -30,17 +31,20 @@ using emcv::port::EmcvMovingStats;
 
 // ---- names ----
 
-const char* estimator_name(emcv::sampling_estimator e) {
-    switch (e) {
-        case emcv::sampling_estimator::spvg: return "spvg";
-        case emcv::sampling_estimator::cv: return "cv";
-        default: return "cv_notex";
-    }
+/// The library's name with '-' as '_': Python spells the estimators as identifiers ("cv_notex").
+std::string estimator_name(emcv::sampling_estimator e) {
+    std::string name = emcv::sampling_estimator_name(e);
+    std::replace(name.begin(), name.end(), '-', '_');
+    return name;
 }
 
 emcv::sampling_estimator parse_estimator(const std::string& name) {
     if (const auto e = emcv::parse_sampling_estimator(name)) return *e;
-    throw py::value_error("emcv: estimator must be 'spvg', 'cv' or 'cv_notex', got '" + name + "'");
+    std::string accepted;
+    for (std::size_t i = 0; i < emcv::sampling_estimators.size(); ++i)
+        accepted += (i == 0 ? "'" : i + 1 == emcv::sampling_estimators.size() ? " or '" : ", '") +
+                    estimator_name(emcv::sampling_estimators[i]) + "'";
+    throw py::value_error("emcv: estimator must be " + accepted + ", got '" + name + "'");
 }
 
 const char* mode_name(emcv::sampling_mode m) {

@@ -39,6 +39,7 @@
 // REFERENCES Xie & Olano 2021 (Eq. 29, 31; supp. Eq. 21, 25-27); SPVG 2020 (eta 0.2, target 1e-4, N <= 64).
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -58,6 +59,11 @@ enum class sampling_estimator {
     cv_notex  ///< moving mean/variance of f - G (the control at alpha = 1); state port::EmcvMovingStats
 };
 
+/// Every estimator, in the order the renderer's method table and the docs list them: the one list that the
+/// parser below, the Python module and the renderer's tests iterate.
+inline constexpr std::array<sampling_estimator, 3> sampling_estimators{sampling_estimator::spvg, sampling_estimator::cv,
+                                                                      sampling_estimator::cv_notex};
+
 /// The estimator's name, as the renderer's method (`emcv-demo --method`) spells it: "spvg", "cv", "cv-notex".
 inline const char* sampling_estimator_name(sampling_estimator e) noexcept {
     switch (e) {
@@ -71,7 +77,7 @@ inline const char* sampling_estimator_name(sampling_estimator e) noexcept {
 /// The estimator a name spells: sampling_estimator_name's names, and "cv_notex" (a valid identifier, as the Python
 /// module spells it); nullopt for anything else.
 inline std::optional<sampling_estimator> parse_sampling_estimator(std::string_view name) noexcept {
-    for (const sampling_estimator e : {sampling_estimator::spvg, sampling_estimator::cv, sampling_estimator::cv_notex})
+    for (const sampling_estimator e : sampling_estimators)
         if (name == sampling_estimator_name(e)) return e;
     if (name == "cv_notex") return sampling_estimator::cv_notex;
     return std::nullopt;
