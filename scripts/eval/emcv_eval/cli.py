@@ -18,13 +18,14 @@ PROG = "emcv-eval-tools"
 
 
 class Command:
-    def __init__(self, name, script, summary, regenerates, prefix=()):
+    def __init__(self, name, script, summary, regenerates, prefix=(), folder=EVAL_DIR):
         self.name, self.script, self.summary, self.regenerates = name, script, summary, regenerates
         self.prefix = list(prefix)  # arguments put before the user's (merge: --merge)
+        self.folder = folder
 
     @property
     def path(self):
-        return os.path.join(EVAL_DIR, self.script)
+        return os.path.join(self.folder, self.script)
 
     @property
     def module(self):
@@ -50,6 +51,10 @@ COMMANDS = [
             "DIR, the cost-*/ folders of a gpu-runs folder"),
     Command("cost-model", "cost_model.py", "each SSS pass's bytes and SFU operations, floors on a GPU",
             "a printed table (docs/results.md, \"Cost model\")"),
+    Command("bench-tables", "bench_tables.py", "the statistics' cost tables from emcv-bench (scripts/, not "
+            "scripts/eval/)", "docs/results/accuracy-vs-time.md blocks context, reference-bound, compensated-cost, "
+            "one-stream, scalar-float, scalar-double, batch, targets; docs/numerics.md block raw-moments; "
+            "docs/integration.md block batch-summary", folder=os.path.join(ROOT, "scripts")),
     Command("oracle", "oracle.py", "the headroom of per-pixel sample allocation on a static scene",
             "a printed table, --csv FILE (docs/results.md, \"Allocation headroom\")"),
     Command("switch-crops", "switch_crops.py", "side-by-side crops per method around light-off's switch",
@@ -115,8 +120,8 @@ def run_command(c, args, prog):
             sys.stdout.write(shell_help(c.path))
             return 0
         return subprocess.call(["bash", c.path] + c.prefix + args)
-    if EVAL_DIR not in sys.path:
-        sys.path.insert(0, EVAL_DIR)  # the scripts import one another (gpu_report: run_eval, sss_cost)
+    if c.folder not in sys.path:
+        sys.path.insert(0, c.folder)  # the scripts import one another (gpu_report: run_eval, sss_cost)
     module = importlib.import_module(c.module)
     saved = sys.argv
     sys.argv = [f"{prog} {c.name}"] + c.prefix + args  # argparse's usage line names the subcommand
