@@ -117,7 +117,8 @@ def run_command(c, args, prog):
     shell script under bash. Its exit status."""
     if c.script.endswith(".sh"):
         if any(a in ("-h", "--help") for a in args):
-            sys.stdout.write(shell_help(c.path))
+            sys.stdout.write(f"usage: {prog} {c.name} ARGS... (bash {os.path.relpath(c.path, ROOT)} ARGS...)\n\n"
+                             + shell_help(c.path))
             return 0
         return subprocess.call(["bash", c.path] + c.prefix + args)
     if c.folder not in sys.path:
