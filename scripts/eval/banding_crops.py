@@ -15,20 +15,15 @@ import os
 import sys
 import tempfile
 
-import matplotlib
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from emcv_eval import ROOT, plots, runner  # noqa: E402  (the emcv-demo run, the atomic save)
 
-matplotlib.use("Agg")
+plt = plots.pyplot()
 import matplotlib.image as mpimg  # noqa: E402
-import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import demo_figure  # noqa: E402  (the emcv-demo run and the atomic save both picture scripts use)
 
-ROOT = demo_figure.ROOT
-
-
-def main():
+def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--build", default=os.path.join(ROOT, "build"))
     p.add_argument("--size", default="256x256")
@@ -36,7 +31,7 @@ def main():
     p.add_argument("--frame", type=int, default=39, help="the frame shown (default 39: the resolve has settled)")
     p.add_argument("--gain", type=float, default=8.0, help="the error column's scale (default 8)")
     p.add_argument("--out", default=os.path.join(ROOT, "docs", "images", "banding-static.png"))
-    a = p.parse_args()
+    a = p.parse_args(argv)
     if a.frame < 0 or a.gain <= 0:
         sys.exit("banding_crops.py: --frame must be >= 0 and --gain > 0")
     burley = "burley-%d" % a.budget
@@ -45,7 +40,7 @@ def main():
     with tempfile.TemporaryDirectory(prefix="emcv-banding-") as tmp:
         cmd = [demo, "--scene", "static", "--method", ",".join(methods), "--size", a.size, "--frames",
                str(a.frame + 1), "--resolve", "taa", "--out", tmp]
-        rows = demo_figure.render("banding_crops.py", cmd)
+        rows = runner.run_demo("banding_crops.py", cmd)
 
         def image(method, kind):
             stem = "frame" if kind == "raw" else "resolved"
@@ -77,7 +72,7 @@ def main():
         fig.suptitle("static %s, frame %d: separable's bands against burley's noise (PSNR: whole frame)"
                      % (a.size, a.frame), fontsize=9)
         fig.tight_layout(rect=(0, 0, 1, 0.98))
-        demo_figure.save("banding_crops.py", fig, a.out, cmd)
+        plots.save_demo_figure("banding_crops.py", fig, a.out, cmd)
 
 
 if __name__ == "__main__":

@@ -12,12 +12,13 @@ Usage: /usr/bin/python3 scripts/eval/block_size.py [--build build] [--size 128x1
 """
 import argparse
 import concurrent.futures
-import json
 import os
 import statistics
-import subprocess
 import sys
 import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from emcv_eval import runner  # noqa: E402
 
 BLOCKS = (1, 2, 4)
 
@@ -25,12 +26,11 @@ BLOCKS = (1, 2, 4)
 def run(a, scene, block):
     """One emcv-demo run of `a.method` and burley-B at block size `block`: {method: (raw dB, resolved dB, spp)}."""
     with tempfile.TemporaryDirectory() as out:
-        cmd = [os.path.join(a.build, "bin", "emcv-demo"), "--scene", scene, "--size", a.size, "--method",
-               f"{a.method},burley-{a.spp_budget:g}", "--spp-budget", f"{a.spp_budget:g}", "--no-frames", "--out", out,
-               "--define", f"EMCV_HISTORY_BLOCK={block}"]
-        subprocess.run(cmd, check=True, capture_output=True, text=True)
-        with open(os.path.join(out, "metrics.json")) as f:
-            rows = json.load(f)["rows"]
+        cmd = runner.command(runner.tool_path(a.build, "emcv-demo"), scene=scene, size=a.size,
+                             methods=[a.method, f"burley-{a.spp_budget:g}"], budget=f"{a.spp_budget:g}",
+                             defines=[f"EMCV_HISTORY_BLOCK={block}"], extra=["--no-frames", "--out", out])
+        runner.run(cmd, "block_size.py")
+        rows = runner.metrics_json(out)
     per = {}
     for r in rows:
         if r["frame"] >= a.first and r["method"] != "reference":
@@ -40,7 +40,7 @@ def run(a, scene, block):
                      for i in range(3)) for m, vals in per.items()}
 
 
-def main():
+def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("scenes", nargs="+")
     p.add_argument("--build", default="build")
@@ -49,8 +49,8 @@ def main():
     p.add_argument("--first", type=int, default=2)
     p.add_argument("--jobs", type=int, default=2)
     p.add_argument("--method", default="cv")
-    a = p.parse_args()
-    if not os.path.isfile(os.path.join(a.build, "bin", "emcv-demo")):
+    a = p.parse_args(argv)
+    if not os.path.isfile(runner.tool_path(a.build, "emcv-demo")):
         sys.exit(f"block_size.py: no emcv-demo under {a.build}/bin")
     with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
         futures = {(s, k): pool.submit(run, a, s, k) for s in a.scenes for k in BLOCKS}

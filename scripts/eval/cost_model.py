@@ -70,13 +70,13 @@ DEVICES = {
 }
 
 
-def main():
+def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--size", default="1920x1080")
     p.add_argument("--budget", type=int, default=8)
     p.add_argument("--device", default="h100", choices=sorted(DEVICES))
     p.add_argument("--blocks", default="", help="comma-separated K (1, 2, 4): add the per-K table and its projection")
-    a = p.parse_args()
+    a = p.parse_args(argv)
     w, h = (int(x) for x in a.size.split("x"))
     pixels = w * h
     dev = DEVICES[a.device]

@@ -11,27 +11,21 @@ gpu-equal-time and gpu-targets (issue 18's GPU targets, judged only where the
 runs' automatic clock was GPU timestamps, i.e. on a hardware renderer)."""
 import argparse
 import glob
-import gzip
 import os
 import re
 import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import run_eval as ev  # noqa: E402  (the same median / table helpers as the llvmpipe evaluation)
+import run_eval as ev  # noqa: E402  (the llvmpipe evaluation's switch frame, the paper's numbers, docs/results.md)
 import sss_cost  # noqa: E402  (the equal-samples tables, recomputed from the runs' CSVs)
+from emcv_eval import ROOT, docs  # noqa: E402
+from emcv_eval.runner import read_csv  # noqa: E402,F401  (a run's CSV, or its gzip-compressed copy PATH.gz)
+from emcv_eval.tables import fmt, mean_finite, median, to_float  # noqa: E402
 
 TEASER = ["diffuse", "separable-17", "burley-16", "spvg", "cv", "cv-notex"]
 PAPER_LABEL = {"separable-17": "separable", "spvg": "spvg", "cv": "cv"}
 SCALING = ["burley-16", "separable-17", "spvg", "cv", "cv-notex"]
-
-
-def read_csv(path):
-    """A run's CSV, or its gzip-compressed copy PATH.gz (the stored runs in docs/results/gpu/ are compressed)."""
-    if not os.path.exists(path) and os.path.exists(path + ".gz"):
-        with gzip.open(path + ".gz", "rt") as f:
-            return ev.read_csv_text(f.read())
-    return ev.read_csv(path)
 
 
 def csvs(pattern):
@@ -55,9 +49,9 @@ def teaser(run_dir, size):
     for m in TEASER:
         q = [r for r in quality if r["method"] == m]
         c = [r for r in cost if r["method"] == m]
-        rows[m] = {"ms": ev.median([ev.to_float(r["sss_ms"]) for r in c]),
-                   "spp": ev.mean_finite([ev.to_float(r["mean_spp"]) for r in c]),
-                   "db": ev.mean_finite([ev.to_float(r["psnr_db"]) for r in q]),
+        rows[m] = {"ms": median([to_float(r["sss_ms"]) for r in c]),
+                   "spp": mean_finite([to_float(r["mean_spp"]) for r in c]),
+                   "db": mean_finite([to_float(r["psnr_db"]) for r in q]),
                    "frames": len(q), "runs": len(c) // max(len(q), 1)}
     spvg = rows["spvg"]
     lines = [f"**{size}**, light-off frames {first}-{last} (the 30 frames from the switch); SSS ms: median over "
@@ -71,13 +65,13 @@ def teaser(run_dir, size):
         r = rows[m]
         label = PAPER_LABEL.get(m)
         pm, pdb = ev.PAPER.get(label, (None, None)) if label else (None, None)
-        paper_ratio = ev.fmt(pm / ev.PAPER["spvg"][0]) if pm else "-"
-        paper_db = ev.fmt(pdb - ev.PAPER["spvg"][1], 1) if pdb else "-"
+        paper_ratio = fmt(pm / ev.PAPER["spvg"][0]) if pm else "-"
+        paper_db = fmt(pdb - ev.PAPER["spvg"][1], 1) if pdb else "-"
         ms_ratio = r["ms"] / spvg["ms"] if spvg["ms"] else float("nan")
         spp_ratio = r["spp"] / spvg["spp"] if spvg["spp"] else float("nan")
-        lines.append(f"| {m} | {ev.fmt(r['ms'])} | {ev.fmt(ms_ratio)} | {ev.fmt(r['spp'], 1)} | "
-                     f"{ev.fmt(spp_ratio)} | {ev.fmt(r['db'])} | {ev.fmt(r['db'] - spvg['db'])} | "
-                     f"{ev.fmt(pm, 1) if pm else '-'} | {paper_ratio} | {paper_db} |")
+        lines.append(f"| {m} | {fmt(r['ms'])} | {fmt(ms_ratio)} | {fmt(r['spp'], 1)} | "
+                     f"{fmt(spp_ratio)} | {fmt(r['db'])} | {fmt(r['db'] - spvg['db'])} | "
+                     f"{fmt(pm, 1) if pm else '-'} | {paper_ratio} | {paper_db} |")
     return "\n".join(lines)
 
 
@@ -102,9 +96,9 @@ def scaling(run_dir):
              "|---|---:|" + "---:|" * (2 * len(methods))]
     for s in sizes:
         sss = int(next(groups[m][s] for m in methods if s in groups[m])[0]["sss_pixels"])
-        ms = [ev.median([ev.to_float(r["sss_ms"]) for r in groups[m].get(s, [])]) for m in methods]
-        lines.append(f"| {s} | {sss} | " + " | ".join(ev.fmt(x) for x in ms) + " | " +
-                     " | ".join(ev.fmt(1e6 * x / max(sss, 1), 2) for x in ms) + " |")
+        ms = [median([to_float(r["sss_ms"]) for r in groups[m].get(s, [])]) for m in methods]
+        lines.append(f"| {s} | {sss} | " + " | ".join(fmt(x) for x in ms) + " | " +
+                     " | ".join(fmt(1e6 * x / max(sss, 1), 2) for x in ms) + " |")
     return "\n".join(lines)
 
 
@@ -250,16 +244,16 @@ def made_at(run_dir):
     path = os.path.join(run_dir, "commit.txt")
     if os.path.exists(path):
         return "commit " + open(path).read().strip()
-    added = subprocess.run(["git", "-C", ev.ROOT, "log", "-1", "--format=%h", "--", run_dir],
+    added = subprocess.run(["git", "-C", ROOT, "log", "-1", "--format=%h", "--", run_dir],
                            capture_output=True, text=True).stdout.split()
     return f"the tree before commit {added[0]}" if added else "an unknown commit"
 
 
-def main():
+def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--doc", default=ev.DOC, help="the document whose GPU blocks are replaced (docs/results.md)")
     p.add_argument("run_dir", help="the folder gpu_runs.sh wrote")
-    a = p.parse_args()
+    a = p.parse_args(argv)
     run_dir = a.run_dir
     if not os.path.isdir(run_dir):
         sys.exit(f"gpu_report.py: {run_dir}: no such folder (the one gpu_runs.sh wrote)")
@@ -274,7 +268,7 @@ def main():
     hardware = auto_clock == "gpu"
     why_not = f"the runs' automatic clock (--timing auto on {renderer}) is {auto_clock}, not GPU timestamps"
     text = open(a.doc).read()
-    rel = os.path.relpath(os.path.abspath(run_dir), ev.ROOT)
+    rel = os.path.relpath(os.path.abspath(run_dir), ROOT)
     made = made_at(run_dir)
     note = f"_Regenerated by `/usr/bin/python3 scripts/eval/gpu_report.py {rel}` from the runs of {made}._\n\n"
     took = steps(run_dir)
@@ -282,13 +276,15 @@ def main():
                f"output in `{rel}/`, made by `bash scripts/eval/gpu_runs.sh` at {made}"
                + (f", in {took[0]} s ({took[1]})." if took else "."))
     cost = load_cost(run_dir)
-    text = ev.replace_block(text, "gpu-context", context, a.doc)
-    text = ev.replace_block(text, "gpu-teaser", note + "\n\n".join(teaser(run_dir, s) for s in sizes), a.doc)
-    text = ev.replace_block(text, "gpu-scaling", note + scaling(run_dir), a.doc)
-    text = ev.replace_block(text, "gpu-cost", note + cost_block(cost, rel), a.doc)
-    text = ev.replace_block(text, "gpu-equal-time", note + equal_time_block(run_dir, rel), a.doc)
-    text = ev.replace_block(text, "gpu-targets", note + targets_block(targets(cost, hardware, why_not)), a.doc)
-    ev.write_atomically(a.doc, text)
+    blocks = [("gpu-context", context),
+              ("gpu-teaser", note + "\n\n".join(teaser(run_dir, s) for s in sizes)),
+              ("gpu-scaling", note + scaling(run_dir)),
+              ("gpu-cost", note + cost_block(cost, rel)),
+              ("gpu-equal-time", note + equal_time_block(run_dir, rel)),
+              ("gpu-targets", note + targets_block(targets(cost, hardware, why_not)))]
+    for name, body in blocks:
+        text = docs.replace_block(text, name, body, a.doc, "gpu_report.py")
+    docs.write_atomically(a.doc, text)
     print(f"gpu_report.py: wrote the GPU blocks of {a.doc}")
 
 

@@ -27,15 +27,15 @@ import numpy as np
 from matplotlib import image as mpimg
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import demo_figure  # noqa: E402  (the emcv-demo run the picture scripts share)
+from emcv_eval import runner  # noqa: E402
 
 
 def render(demo, out, scene, size, methods, extra, frames, seed):
-    """One emcv-demo run writing its frames under `out` (demo_figure.render: a failed run stops with its stderr)."""
+    """One emcv-demo run writing its frames under `out` (runner.run_demo: a failed run stops with its stderr)."""
     command = [demo, "--scene", scene, "--size", size, "--method", ",".join(methods), "--seed", str(seed)] + extra
     if frames:
         command += ["--frames", str(frames)]
-    demo_figure.render("jitter_aa.py", command + ["--out", out])
+    runner.run_demo("jitter_aa.py", command + ["--out", out])
 
 
 def load(path):
@@ -57,7 +57,7 @@ def frame_count(folder):
     return len([f for f in os.listdir(folder) if f.startswith("frame-") and f.endswith(".png")])
 
 
-def main():
+def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--build", default="build")
     parser.add_argument("--scenes", default="static,moving")
@@ -68,7 +68,7 @@ def main():
     parser.add_argument("--frames", type=int, default=0)
     parser.add_argument("--first", type=int, default=20)
     parser.add_argument("--seed", type=int, default=1)
-    args = parser.parse_args()
+    args = parser.parse_args(argv)
     if args.scale < 1:
         sys.exit("jitter_aa.py: --scale must be at least 1")
     demo = os.path.join(args.build, "bin", "emcv-demo")

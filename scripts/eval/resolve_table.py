@@ -15,12 +15,13 @@ markdown table per scene from its metrics.csv:
                                                    [--define NAME=VALUE ...]
 """
 import argparse
-import csv
 import math
 import os
-import subprocess
 import sys
 import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from emcv_eval import runner  # noqa: E402
 
 WINDOW = 30        # frames after a change the comparison covers (the summary's window)
 SETTLED_FROM = 20  # the settled value is the mean over frames change+20 .. change+29; the warm-up at the start
@@ -49,13 +50,9 @@ def lag(psnr_by_frame, change):
 
 def run_scene(build, scene, methods, size, budget, out, defines=()):
     """emcv-demo's rows for `scene` and its first light change (None without one), under `defines` (tunables)."""
-    cmd = [os.path.join(build, "bin", "emcv-demo"), "--scene", scene, "--method", ",".join(methods),
-           "--spp-budget", str(budget), "--size", size, "--resolve", "taa", "--no-frames", "--out", out]
-    for d in defines:
-        cmd += ["--define", d]
-    done = subprocess.run(cmd, capture_output=True, text=True)
-    if done.returncode != 0:
-        sys.exit("resolve_table: %s failed:\n%s" % (" ".join(cmd), done.stderr))
+    cmd = runner.command(runner.tool_path(build, "emcv-demo"), scene=scene, methods=methods, size=size,
+                         budget=budget, defines=defines, extra=["--resolve", "taa", "--no-frames", "--out", out])
+    done = runner.run(cmd, "resolve_table")
     # The summary names the first light change in its cv vs burley-B line ("from the first light change at frame
     # C"), which it prints when both ran: the default method list has both.
     change = None
@@ -63,9 +60,7 @@ def run_scene(build, scene, methods, size, budget, out, defines=()):
         marker = "from the first light change at frame "
         if marker in line:
             change = int(line.split(marker)[1].split(")")[0])
-    with open(os.path.join(out, "metrics.csv")) as f:
-        rows = list(csv.DictReader(f))
-    return rows, change
+    return runner.metrics_csv(out), change
 
 
 def summary(rows, change, method):
@@ -97,7 +92,7 @@ def table(scene, rows, change, methods):
     return "\n".join(lines)
 
 
-def main():
+def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--build", default="build")
     p.add_argument("--size", default="96x96")
@@ -106,7 +101,7 @@ def main():
     p.add_argument("--methods", default=None, help="default: diffuse,burley-B,separable-17,spvg,cv,cv-notex")
     p.add_argument("--define", action="append", default=[], metavar="NAME=VALUE",
                    help="a tunable's other value for every run (emcv-demo --define; repeatable)")
-    a = p.parse_args()
+    a = p.parse_args(argv)
     methods = (a.methods.split(",") if a.methods else
                ["diffuse", "burley-%d" % a.budget, "separable-17", "spvg", "cv", "cv-notex"])
     with tempfile.TemporaryDirectory() as tmp:

@@ -54,7 +54,12 @@ import sys
 import tempfile
 import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from emcv_eval import ROOT, docs, git, plots, runner  # noqa: E402  (the helpers every script of scripts/eval shares)
+from emcv_eval.docs import write_atomically  # noqa: E402,F401
+from emcv_eval.plots import COLOURS  # noqa: E402,F401
+from emcv_eval.runner import csv_header as header, read_csv, read_csv_text  # noqa: E402,F401
+from emcv_eval.tables import fmt, mean_finite, median, sign, to_float  # noqa: E402,F401
 RESULTS = os.path.join(ROOT, "docs", "results")
 DEFAULT_RAW = os.path.join(RESULTS, "raw")
 DOC = os.path.join(ROOT, "docs", "results.md")
@@ -103,42 +108,6 @@ def die(msg):
 
 # ---------------------------------------------------------------------------------------------------- files
 
-def write_atomically(path, text):
-    os.makedirs(os.path.dirname(path), exist_ok=True)
-    tmp = f"{path}.tmp{os.getpid()}"
-    with open(tmp, "w") as f:
-        f.write(text)
-    os.replace(tmp, path)
-
-
-def read_csv_text(text):
-    return list(csv.DictReader(io.StringIO("\n".join(l for l in text.splitlines() if not l.startswith("#")))))
-
-
-def read_csv(path):
-    with open(path) as f:
-        return read_csv_text(f.read())
-
-
-def header(path):
-    """The '# key: value' lines at the top of a raw file."""
-    out = {}
-    with open(path) as f:
-        for line in f:
-            if not line.startswith("# "):
-                break
-            k, _, v = line[2:].rstrip("\n").partition(": ")
-            out[k] = v
-    return out
-
-
-def to_float(v):
-    try:
-        return float(v)
-    except (TypeError, ValueError):
-        return math.nan
-
-
 def number_text(column, value):
     """A raw CSV cell: PSNR to 0.001 dB, samples to 4 decimals, times to 4 significant digits, else as is."""
     x = to_float(value)
@@ -163,20 +132,10 @@ def csv_text(rows, columns, comments):
     return s.getvalue()
 
 
-# The evaluation's own outputs: changes to them do not make the tree that rendered them "dirty".
-OUTPUTS = ["docs/results", "docs/results.md", "docs/images"]
-
-
 def git_commit():
     """The commit, with -dirty when a tracked file other than the evaluation's outputs and the docs differs from it
-    (docs/ holds the generated blocks the scripts write and prose: a run made while a doc was being edited ran
-    the committed code)."""
-    head = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
-    if head.returncode != 0:
-        return "unknown"
-    changed = subprocess.run(["git", "-C", ROOT, "status", "--porcelain", "--untracked-files=no", "--", "."] +
-                             [f":(exclude){p}" for p in OUTPUTS + ["docs"]], capture_output=True, text=True).stdout
-    return head.stdout.strip() + ("-dirty" if changed.strip() else "")
+    (emcv_eval.git.commit)."""
+    return git.commit()
 
 
 # ---------------------------------------------------------------------------------------------------- jobs
@@ -344,7 +303,7 @@ class Context:
 
 
 def run_tool(ctx, job, extra):
-    cmd = [os.path.join(ctx.build, "bin", job.tool)] + job.args + extra
+    cmd = [runner.tool_path(ctx.build, job.tool)] + job.args + extra
     r = subprocess.run(cmd, capture_output=True, text=True, env=ctx.env, cwd=ROOT)
     if r.returncode != 0:
         raise RuntimeError(f"job {job.label()}: {' '.join(cmd)} failed ({r.returncode}): {r.stderr.strip()[-800:]}")
@@ -441,16 +400,6 @@ def missing_jobs(jobs, raw_dir):
 
 
 # ---------------------------------------------------------------------------------------------------- data
-
-def mean_finite(xs):
-    xs = [x for x in xs if math.isfinite(x)]
-    return math.fsum(xs) / len(xs) if xs else math.nan
-
-
-def median(xs):
-    xs = [x for x in xs if not math.isnan(x)]
-    return statistics.median(xs) if xs else math.nan
-
 
 def method_family(method):
     for f in ("burley", "separable"):
@@ -551,14 +500,6 @@ def lag(series, column, change, end):
 
 
 # ---------------------------------------------------------------------------------------------------- quality tables
-
-def fmt(x, digits=2):
-    return "n/a" if x is None or (isinstance(x, float) and not math.isfinite(x)) else f"{x:.{digits}f}"
-
-
-def sign(x, digits=2):
-    return "n/a" if x is None or not math.isfinite(x) else f"{x:+.{digits}f}"
-
 
 def setting_of(group, method):
     if group == "fixed":
@@ -974,24 +915,12 @@ def stage_rows(d, stage):
 
 # ---------------------------------------------------------------------------------------------------- plots
 
-COLOURS = {"burley": "tab:blue", "separable": "tab:orange", "spvg": "tab:red", "cv": "tab:green",
-           "cv-notex": "tab:purple", "diffuse": "black"}
-
-
 def plt_module():
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    return plt
+    return plots.pyplot()
 
 
 def save_fig(fig, out_dir, name):
-    path = os.path.join(out_dir, name)
-    os.makedirs(out_dir, exist_ok=True)
-    tmp = f"{path}.tmp{os.getpid()}.png"
-    fig.savefig(tmp, dpi=110, bbox_inches="tight")
-    os.replace(tmp, path)
-    plt_module().close(fig)
+    plots.save(fig, os.path.join(out_dir, name), tight=True)
 
 
 def plot_pareto(d, ms, out_dir, device):
@@ -1134,28 +1063,7 @@ def plot_scaling(groups, key, xlabel, name, out_dir, device):
 # ---------------------------------------------------------------------------------------------------- assembling
 
 def replace_block(text, name, body, path=DOC):
-    begin, end = f"<!-- BEGIN GENERATED: {name} -->", f"<!-- END GENERATED: {name} -->"
-    i, j = text.find(begin), text.find(end)
-    if i < 0 or j < 0:
-        die(f"{path}: no {begin} ... {end} block")
-    return text[:i + len(begin)] + "\n" + body.strip() + "\n" + text[j:]
-
-
-def publish_table(table, write, doc, name, script, argv):
-    """Prints a script's table and, with `write` (its --write-doc), puts it in its doc's GENERATED block."""
-    print(table)
-    if write:
-        write_generated_block(doc, name, script, argv, table)
-
-
-def write_generated_block(doc, name, script, argv, body):
-    """Replaces the GENERATED block `name` of `doc` with `body` under the line naming the command (`script` with
-    `argv`) and the commit it was made at; for the scripts that regenerate one table of a doc."""
-    command = " ".join([f"/usr/bin/python3 {script}"] + argv)
-    with open(doc) as f:
-        text = f.read()
-    write_atomically(doc, replace_block(text, name, f"Regenerated by `{command}`, made at commit {git_commit()}.\n\n{body}",
-                                        doc))
+    return docs.replace_block(text, name, body, path, "run_eval.py")
 
 
 def load_data(jobs, raw_dir, c):

@@ -32,6 +32,10 @@ import statistics
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from emcv_eval import runner  # noqa: E402
+from emcv_eval.docs import write_atomically  # noqa: E402  (the runs' CSVs, settings.json last)
+
 
 def parse_variant(text):
     """"LABEL=NAME=VALUE,NAME=VALUE" -> (LABEL, ["NAME=VALUE", ...]); "LABEL=" -> (LABEL, [])."""
@@ -43,10 +47,8 @@ def parse_variant(text):
 
 def run_eval(build, a, methods, defines=()):
     """One emcv-eval run: its CSV text."""
-    cmd = [f"{build}/bin/emcv-eval", "--scene", a.scene, "--size", a.size, "--frames", str(a.frames),
-           "--method", ",".join(methods)]
-    for d in defines:
-        cmd += ["--define", d]
+    cmd = runner.command(runner.tool_path(build, "emcv-eval"), scene=a.scene, methods=methods, size=a.size,
+                         frames=a.frames, defines=defines)
     if a.timing != "auto":  # builds from before --timing took the wall clock, which is auto's on llvmpipe
         cmd += ["--timing", a.timing]
     if a.target_variance is not None:
@@ -115,7 +117,7 @@ def load_saved(raw_dir):
 SETTINGS = "settings.json"
 
 
-def main():
+def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--build", action="append", default=None)
     p.add_argument("--runs", type=int, default=3)
@@ -131,7 +133,7 @@ def main():
     p.add_argument("--variant", action="append", default=None)
     p.add_argument("--save-raw", default=None, metavar="DIR",
                    help="also write each run's emcv-eval CSV and the settings to DIR (load_saved reads them back)")
-    a = p.parse_args()
+    a = p.parse_args(argv)
     builds = a.build or ["build"]
     # Each row set: (label, build, defines): the builds as they are, or the first build under each variant.
     runs = [(b, b, []) for b in builds]
@@ -164,13 +166,6 @@ def main():
              "labels": list(results), "methods": methods, "baseline": baseline,
              "label_column": "variant" if a.variant else "build"}, indent=1) + "\n")
     print(table(setting, results, methods, baseline, "variant" if a.variant else "build"))
-
-
-def write_atomically(path, text):
-    tmp = f"{path}.tmp{os.getpid()}"
-    with open(tmp, "w") as f:
-        f.write(text)
-    os.replace(tmp, path)
 
 
 if __name__ == "__main__":

@@ -15,34 +15,30 @@ import os
 import sys
 import tempfile
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.image as mpimg  # noqa: E402
-import matplotlib.pyplot as plt  # noqa: E402
-
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import demo_figure  # noqa: E402  (the emcv-demo run and the atomic save both picture scripts use)
+from emcv_eval import ROOT, plots, runner  # noqa: E402  (the emcv-demo run, the atomic save)
 
-ROOT = demo_figure.ROOT
+plt = plots.pyplot()
+import matplotlib.image as mpimg  # noqa: E402
+
 SWITCH = 30  # light-off's key light switches off at frame 30 (demo/scenes/light-off.json)
 
 
-def main():
+def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--build", default=os.path.join(ROOT, "build"))
     p.add_argument("--size", default="256x256")
     p.add_argument("--budget", type=int, default=8)
     p.add_argument("--after", type=int, default=3, help="frames after the switch of the second pair of columns")
     p.add_argument("--out", default=os.path.join(ROOT, "docs", "images", "switch-crops.png"))
-    a = p.parse_args()
+    a = p.parse_args(argv)
     methods = ["burley-%d" % a.budget, "separable-17", "spvg", "cv", "cv-notex"]
     before, after = SWITCH - 1, SWITCH + a.after
     demo = os.path.join(a.build, "bin", "emcv-demo")
     with tempfile.TemporaryDirectory(prefix="emcv-crops-") as tmp:
         cmd = [demo, "--scene", "light-off", "--method", ",".join(methods), "--spp-budget", str(a.budget),
                "--size", a.size, "--frames", str(after + 1), "--resolve", "taa", "--out", tmp]
-        rows = demo_figure.render("switch_crops.py", cmd)
+        rows = runner.run_demo("switch_crops.py", cmd)
 
         def crop(path):
             img = mpimg.imread(path)[..., :3]
@@ -71,7 +67,7 @@ def main():
         fig.suptitle("light-off %s, budget %d: frame %d (before the switch) and frame %d (%d after); "
                      "PSNR of the whole frame" % (a.size, a.budget, before, after, a.after), fontsize=9)
         fig.tight_layout(rect=(0, 0, 1, 0.97))
-        demo_figure.save("switch_crops.py", fig, a.out, cmd)
+        plots.save_demo_figure("switch_crops.py", fig, a.out, cmd)
 
 
 if __name__ == "__main__":

@@ -32,10 +32,13 @@ import argparse
 import csv
 import os
 import subprocess
+import sys
 import tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from emcv_eval import ROOT  # noqa: E402
+
 TILE = 8
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 STEADY_SCENES = ("static,light-off,flicker,club,moving,variations/burst-1,variations/burst-3,"
                  "variations/camera-switch,variations/fade,variations/switch-on")
 
@@ -125,7 +128,7 @@ def steady(a):
     print("\n".join(lines))
 
 
-def main():
+def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--build", default="build")
     p.add_argument("--scene", default="light-off")
@@ -137,7 +140,7 @@ def main():
     p.add_argument("--steady", action="store_true", help="frame-to-frame spread of the samples and the warp work")
     p.add_argument("--first", type=int, default=2, help="--steady: the first frame counted (default 2)")
     p.add_argument("--scenes", default=STEADY_SCENES, help="--steady: built-in names or paths under demo/scenes without .json")
-    a = p.parse_args()
+    a = p.parse_args(argv)
     if a.steady:
         if a.target_variance:
             p.error("--steady compares at a budget: not with --target-variance")
