@@ -9,20 +9,10 @@
 #     (-I <prefix>/share/emcv -I <prefix>/include), and spirv-cross turns the Vulkan SPIR-V into HLSL (shader
 #     model 5.1).
 cmake_minimum_required(VERSION 3.21)
-foreach(var GLSLANG SPIRV_CROSS SHARE_DIR INCLUDE_ROOT SOURCE_MODULES PASSES WORK)
-  if(NOT DEFINED ${var})
-    message(FATAL_ERROR "compile_modules.cmake: -D${var}=... is required")
-  endif()
-endforeach()
+include("${CMAKE_CURRENT_LIST_DIR}/../script_support.cmake")
+emcv_require_vars(compile_modules.cmake GLSLANG SPIRV_CROSS SHARE_DIR INCLUDE_ROOT SOURCE_MODULES PASSES WORK)
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
-
-function(run step)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "${step} failed (exit ${rc}):\n${out}${err}")
-  endif()
-endfunction()
 
 # 1. installed = source; no resources
 file(GLOB source_modules RELATIVE "${SOURCE_MODULES}" "${SOURCE_MODULES}/*.glsl")

@@ -123,16 +123,6 @@ int main(int argc, char** argv) {
     if (skip) return consumer::no_display("the display lacks EGL_KHR_no_config_context or EGL_KHR_surfaceless_context");
     if (context == EGL_NO_CONTEXT) return 1;
 
-    CONSUMER_GL(PFNGLCREATESHADERPROC, glCreateShader);
-    CONSUMER_GL(PFNGLSHADERSOURCEPROC, glShaderSource);
-    CONSUMER_GL(PFNGLCOMPILESHADERPROC, glCompileShader);
-    CONSUMER_GL(PFNGLGETSHADERIVPROC, glGetShaderiv);
-    CONSUMER_GL(PFNGLGETSHADERINFOLOGPROC, glGetShaderInfoLog);
-    CONSUMER_GL(PFNGLCREATEPROGRAMPROC, glCreateProgram);
-    CONSUMER_GL(PFNGLATTACHSHADERPROC, glAttachShader);
-    CONSUMER_GL(PFNGLLINKPROGRAMPROC, glLinkProgram);
-    CONSUMER_GL(PFNGLGETPROGRAMIVPROC, glGetProgramiv);
-    CONSUMER_GL(PFNGLGETPROGRAMINFOLOGPROC, glGetProgramInfoLog);
     CONSUMER_GL(PFNGLUSEPROGRAMPROC, glUseProgram);
     CONSUMER_GL(PFNGLCREATEBUFFERSPROC, glCreateBuffers);
     CONSUMER_GL(PFNGLNAMEDBUFFERSTORAGEPROC, glNamedBufferStorage);
@@ -154,7 +144,6 @@ int main(int argc, char** argv) {
     const fs::path here = fs::path(CONSUMER_DIR);
     GLuint programs[4] = {};
     const char* const names[4] = {"plan", "solve", "count", "update"};
-    std::vector<char> log(1 << 15);
     for (int k = 0; k < 4; ++k) {
         std::string source;
         try {
@@ -163,26 +152,8 @@ int main(int argc, char** argv) {
             std::printf("FAILED: %s\n", e.what());
             return 1;
         }
-        const char* text = source.c_str();
-        const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-        glShaderSource(shader, 1, &text, nullptr);
-        glCompileShader(shader);
-        GLint ok = GL_FALSE;
-        glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-        if (!ok) {
-            glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
-            std::printf("FAILED: %s.comp.glsl does not compile:\n%s\n", names[k], log.data());
-            return 1;
-        }
-        programs[k] = glCreateProgram();
-        glAttachShader(programs[k], shader);
-        glLinkProgram(programs[k]);
-        glGetProgramiv(programs[k], GL_LINK_STATUS, &ok);
-        if (!ok) {
-            glGetProgramInfoLog(programs[k], static_cast<GLsizei>(log.size()), nullptr, log.data());
-            std::printf("FAILED: %s.comp.glsl does not link:\n%s\n", names[k], log.data());
-            return 1;
-        }
+        programs[k] = consumer::compile_compute(source, std::string(names[k]) + ".comp.glsl");
+        if (programs[k] == 0) return 1;
     }
 
     // Resources, at app.glsl's bindings. The histories start cleared to zero, which decodes as the fresh state.

@@ -1,16 +1,19 @@
 // SPDX-License-Identifier: MIT
-// The package tests' OpenGL engines (gl_consumer, budget_consumer) take a headless EGL context as an engine would:
-// no emcv GL code. Exit status 77 (CTest's SKIP_RETURN_CODE) where there is no EGL display, unless
+// The package tests' OpenGL engines (gl_consumer, budget_consumer) take a headless EGL context and build their
+// compute programs as an engine would: no emcv GL code. Exit status 77 (CTest's SKIP_RETURN_CODE) where there is no EGL display, unless
 // EMCV_REQUIRE_GL=1 makes that a failure.
 #ifndef EMCV_TESTS_PACKAGE_EGL_HEADLESS_H
 #define EMCV_TESTS_PACKAGE_EGL_HEADLESS_H
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
+#include <GL/glcorearb.h>
 
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <string>
+#include <vector>
 
 namespace consumer {
 
@@ -84,6 +87,46 @@ inline EGLContext make_context(EGLDisplay display, bool& skip) {
         return EGL_NO_CONTEXT;
     }
     return context;
+}
+
+/// The compute program of `source` (one glShaderSource string) in the current context, or 0 after printing the
+/// compiler's or the linker's log under `name`.
+inline GLuint compile_compute(const std::string& source, const std::string& name) {
+    CONSUMER_GL(PFNGLCREATESHADERPROC, glCreateShader);
+    CONSUMER_GL(PFNGLSHADERSOURCEPROC, glShaderSource);
+    CONSUMER_GL(PFNGLCOMPILESHADERPROC, glCompileShader);
+    CONSUMER_GL(PFNGLGETSHADERIVPROC, glGetShaderiv);
+    CONSUMER_GL(PFNGLGETSHADERINFOLOGPROC, glGetShaderInfoLog);
+    CONSUMER_GL(PFNGLDELETESHADERPROC, glDeleteShader);
+    CONSUMER_GL(PFNGLCREATEPROGRAMPROC, glCreateProgram);
+    CONSUMER_GL(PFNGLATTACHSHADERPROC, glAttachShader);
+    CONSUMER_GL(PFNGLLINKPROGRAMPROC, glLinkProgram);
+    CONSUMER_GL(PFNGLGETPROGRAMIVPROC, glGetProgramiv);
+    CONSUMER_GL(PFNGLGETPROGRAMINFOLOGPROC, glGetProgramInfoLog);
+    const char* text = source.c_str();
+    const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+    glShaderSource(shader, 1, &text, nullptr);
+    glCompileShader(shader);
+    GLint ok = GL_FALSE;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    std::vector<char> log(1 << 15);
+    if (!ok) {
+        glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
+        std::printf("FAILED: %s does not compile:\n%s\n", name.c_str(), log.data());
+        glDeleteShader(shader);
+        return 0;
+    }
+    const GLuint program = glCreateProgram();
+    glAttachShader(program, shader);
+    glLinkProgram(program);
+    glDeleteShader(shader);  // freed with the program
+    glGetProgramiv(program, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        glGetProgramInfoLog(program, static_cast<GLsizei>(log.size()), nullptr, log.data());
+        std::printf("FAILED: %s does not link:\n%s\n", name.c_str(), log.data());
+        return 0;
+    }
+    return program;
 }
 
 }  // namespace consumer

@@ -73,16 +73,6 @@ int main() {
     if (context == EGL_NO_CONTEXT) return 1;
 
     CONSUMER_GL(PFNGLGETSTRINGPROC, glGetString);
-    CONSUMER_GL(PFNGLCREATESHADERPROC, glCreateShader);
-    CONSUMER_GL(PFNGLSHADERSOURCEPROC, glShaderSource);
-    CONSUMER_GL(PFNGLCOMPILESHADERPROC, glCompileShader);
-    CONSUMER_GL(PFNGLGETSHADERIVPROC, glGetShaderiv);
-    CONSUMER_GL(PFNGLGETSHADERINFOLOGPROC, glGetShaderInfoLog);
-    CONSUMER_GL(PFNGLCREATEPROGRAMPROC, glCreateProgram);
-    CONSUMER_GL(PFNGLATTACHSHADERPROC, glAttachShader);
-    CONSUMER_GL(PFNGLLINKPROGRAMPROC, glLinkProgram);
-    CONSUMER_GL(PFNGLGETPROGRAMIVPROC, glGetProgramiv);
-    CONSUMER_GL(PFNGLGETPROGRAMINFOLOGPROC, glGetProgramInfoLog);
     CONSUMER_GL(PFNGLGETPROGRAMRESOURCEINDEXPROC, glGetProgramResourceIndex);
     CONSUMER_GL(PFNGLGETPROGRAMRESOURCEIVPROC, glGetProgramResourceiv);
     CONSUMER_GL(PFNGLGETUNIFORMLOCATIONPROC, glGetUniformLocation);
@@ -96,32 +86,12 @@ int main() {
     CONSUMER_GL(PFNGLGETNAMEDBUFFERSUBDATAPROC, glGetNamedBufferSubData);
     CONSUMER_GL(PFNGLDELETEBUFFERSPROC, glDeleteBuffers);
     CONSUMER_GL(PFNGLDELETEPROGRAMPROC, glDeleteProgram);
-    CONSUMER_GL(PFNGLDELETESHADERPROC, glDeleteShader);
     std::printf("GL_RENDERER: %s\n", reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
 
     // The shader: #version, the installed flattened port, the kernel, main. No include resolver.
     const std::string source = "#version 450 core\n" + read_text(EMCV_PORT_GLSL) + "\n" + read_text(CONSUMER_STREAM) + kMain;
-    const char* text = source.c_str();
-    const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-    glShaderSource(shader, 1, &text, nullptr);
-    glCompileShader(shader);
-    GLint ok = GL_FALSE;
-    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    std::vector<char> log(1 << 14);
-    if (!ok) {
-        glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
-        std::printf("FAILED: the compute shader does not compile:\n%s\n", log.data());
-        return 1;
-    }
-    const GLuint program = glCreateProgram();
-    glAttachShader(program, shader);
-    glLinkProgram(program);
-    glGetProgramiv(program, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        glGetProgramInfoLog(program, static_cast<GLsizei>(log.size()), nullptr, log.data());
-        std::printf("FAILED: the compute program does not link:\n%s\n", log.data());
-        return 1;
-    }
+    const GLuint program = consumer::compile_compute(source, "the compute shader");
+    if (program == 0) return 1;
     int failures = 0;
 
     // The driver's std430 layout of EmcvEmcm2 is host.hpp's.
@@ -193,7 +163,6 @@ int main() {
 
     glDeleteBuffers(3, buffers);
     glDeleteProgram(program);
-    glDeleteShader(shader);
     eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     eglDestroyContext(display, context);
     eglTerminate(display);

@@ -6,21 +6,10 @@
 #  3. SHADER validates as OpenGL GLSL, compiles to OpenGL and Vulkan SPIR-V, and spirv-cross turns the
 #     Vulkan SPIR-V into HLSL (shader model 5.1) and MSL source: an engine on another API can take it.
 cmake_minimum_required(VERSION 3.21)
-foreach(var GLSLANG SPIRV_CROSS INCLUDE_ROOT SOURCE_PORT SHADER WORK)
-  if(NOT DEFINED ${var})
-    message(FATAL_ERROR "compile_installed_port.cmake: -D${var}=... is required")
-  endif()
-endforeach()
+include("${CMAKE_CURRENT_LIST_DIR}/../script_support.cmake")
+emcv_require_vars(compile_installed_port.cmake GLSLANG SPIRV_CROSS INCLUDE_ROOT SOURCE_PORT SHADER WORK)
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
-
-function(run step)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "${step} failed (exit ${rc}):\n${out}${err}")
-  endif()
-  message(STATUS "${step}: ok")
-endfunction()
 
 # 1. the installed port is the source tree's port, header for header
 file(GLOB source_headers RELATIVE "${SOURCE_PORT}" "${SOURCE_PORT}/*.h")

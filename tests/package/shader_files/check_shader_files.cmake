@@ -12,11 +12,8 @@
 #     and the module emcv_port.hlsl, whose use tests/hlsl checks) are the translation of the source tree's port
 #     and reference kernel (not stale).
 cmake_minimum_required(VERSION 3.21)
-foreach(var SHADER_DIR SOURCE_DIR GLSLANG SPIRV_CROSS WORK)
-  if(NOT DEFINED ${var})
-    message(FATAL_ERROR "check_shader_files.cmake: -D${var}=... is required")
-  endif()
-endforeach()
+include("${CMAKE_CURRENT_LIST_DIR}/../script_support.cmake")
+emcv_require_vars(check_shader_files.cmake SHADER_DIR SOURCE_DIR GLSLANG SPIRV_CROSS WORK)
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
 set(glsl_file "${SHADER_DIR}/emcv_port.glsl")
@@ -27,14 +24,6 @@ foreach(f "${glsl_file}" "${hlsl_file}" "${module_file}")
     message(FATAL_ERROR "not installed: ${f}")
   endif()
 endforeach()
-
-function(run step)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "${step} failed (exit ${rc}):\n${out}${err}")
-  endif()
-  set(run_output "${out}" PARENT_SCOPE)
-endfunction()
 
 # 1. fresh, complete, self-contained
 file(READ "${glsl_file}" installed)
