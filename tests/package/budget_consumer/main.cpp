@@ -115,13 +115,9 @@ int main(int argc, char** argv) {
         return 2;
     }
     const std::vector<fs::path> roots{argv[1], argv[2]};
-    EGLDisplay display = consumer::open_display();
-    if (display == EGL_NO_DISPLAY)
-        return consumer::no_display("no surfaceless, device or default EGL display initialises");
-    bool skip = false;
-    EGLContext context = consumer::make_context(display, skip);
-    if (skip) return consumer::no_display("the display lacks EGL_KHR_no_config_context or EGL_KHR_surfaceless_context");
-    if (context == EGL_NO_CONTEXT) return 1;
+    EGLDisplay display = EGL_NO_DISPLAY;
+    EGLContext context = EGL_NO_CONTEXT;
+    if (const int status = consumer::start(display, context); status != 0) return status;
 
     CONSUMER_GL(PFNGLUSEPROGRAMPROC, glUseProgram);
     CONSUMER_GL(PFNGLCREATEBUFFERSPROC, glCreateBuffers);

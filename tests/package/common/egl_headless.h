@@ -89,6 +89,17 @@ inline EGLContext make_context(EGLDisplay display, bool& skip) {
     return context;
 }
 
+/// Opens a display and makes a GL 4.5 core context current on it: 0 on success, else the exit status the test
+/// returns (no_display's, or 1 when a display that has the extensions gives no context).
+inline int start(EGLDisplay& display, EGLContext& context) {
+    display = open_display();
+    if (display == EGL_NO_DISPLAY) return no_display("no surfaceless, device or default EGL display initialises");
+    bool skip = false;
+    context = make_context(display, skip);
+    if (skip) return no_display("the display lacks EGL_KHR_no_config_context or EGL_KHR_surfaceless_context");
+    return context == EGL_NO_CONTEXT ? 1 : 0;
+}
+
 /// The compute program of `source` (one glShaderSource string) in the current context, or 0 after printing the
 /// compiler's or the linker's log under `name`.
 inline GLuint compile_compute(const std::string& source, const std::string& name) {

@@ -64,13 +64,9 @@ bool same_bits(const T& a, const T& b) {
 }  // namespace
 
 int main() {
-    EGLDisplay display = consumer::open_display();
-    if (display == EGL_NO_DISPLAY)
-        return consumer::no_display("no surfaceless, device or default EGL display initialises");
-    bool skip = false;
-    EGLContext context = consumer::make_context(display, skip);
-    if (skip) return consumer::no_display("the display lacks EGL_KHR_no_config_context or EGL_KHR_surfaceless_context");
-    if (context == EGL_NO_CONTEXT) return 1;
+    EGLDisplay display = EGL_NO_DISPLAY;
+    EGLContext context = EGL_NO_CONTEXT;
+    if (const int status = consumer::start(display, context); status != 0) return status;
 
     CONSUMER_GL(PFNGLGETSTRINGPROC, glGetString);
     CONSUMER_GL(PFNGLGETPROGRAMRESOURCEINDEXPROC, glGetProgramResourceIndex);
