@@ -98,11 +98,12 @@ ivec2 emcv_adaptive_grid() {
     return (emcv_app_viewport_size() + (EMCV_HISTORY_BLOCK - 1)) / EMCV_HISTORY_BLOCK;
 }
 
+/// Whether p lies in [0, size).
+bool emcv_adaptive_inside(ivec2 p, ivec2 size) { return all(greaterThanEqual(p, ivec2(0))) && all(lessThan(p, size)); }
 /// Whether pixel p is on screen.
-bool emcv_adaptive_on_screen(ivec2 p) { return all(greaterThanEqual(p, ivec2(0))) && all(lessThan(p, emcv_app_viewport_size())); }
-
+bool emcv_adaptive_on_screen(ivec2 p) { return emcv_adaptive_inside(p, emcv_app_viewport_size()); }
 /// Whether t is a texel of the block grid (at K = 1, emcv_adaptive_on_screen).
-bool emcv_adaptive_on_grid(ivec2 t) { return all(greaterThanEqual(t, ivec2(0))) && all(lessThan(t, emcv_adaptive_grid())); }
+bool emcv_adaptive_on_grid(ivec2 t) { return emcv_adaptive_inside(t, emcv_adaptive_grid()); }
 
 /// No block (an invocation that holds none).
 EmcvAdaptiveBlock emcv_adaptive_no_block() { return EmcvAdaptiveBlock(ivec2(-1), ivec2(-1), 0u, 0u, false); }
