@@ -35,11 +35,11 @@ PIXEL = {
     # G: 2 pow (4); EMCM push: divisions (3), the 5-sigma test: a division; budget: sqrt of sigma^2.
     "adaptive update (cv)": {"bytes": 4 + 24 + 24 + 8, "sfu": 4 + 3 + 1 + 1},
     # budget, the next frame showing this view: the burley pass plans it after its update instead of that frame's
-    # samples pass (docs/renderer.md, "Planning the next frame"): history a and b read back 24 (this invocation's
-    # own stores: most hit the caches; counted from DRAM) and sigma^2 written 4; the material code and the
-    # sub-pixel test are the taps' setup's (burley row). sigma: a division and a sqrt (2); the pooling and the
-    # shrinkage as in the samples pass (14). No motion, no previous G-buffer, no history copy.
-    "planned ahead (cv, still view)": {"bytes": 24 + 4, "sfu": 2 + 14},
+    # samples pass (docs/renderer.md, "Planning the next frame"): the history it has just stored taken from its
+    # registers (cv's 32-bit texels read back bit for bit: emcv_adaptive_as_stored), sigma^2 written 4; the
+    # material code and the sub-pixel test are the taps' setup's (burley row). sigma: a division and a sqrt (2);
+    # the pooling and the shrinkage as in the samples pass (14). No motion, no previous G-buffer, no history copy.
+    "planned ahead (cv, still view)": {"bytes": 4, "sfu": 2 + 14},
 }
 
 # The same adaptive rows split by grain, for block statistics (EMCV_HISTORY_BLOCK = K, docs/renderer.md "Block
@@ -54,7 +54,7 @@ SPLIT = {
     "adaptive update (cv)": {"pixel": {"bytes": 4 + 8, "sfu": 4},
                              "block": {"bytes": 24 + 24, "sfu": 5}},
     "planned ahead (cv, still view)": {"pixel": {"bytes": 0, "sfu": 0},
-                                       "block": {"bytes": 24 + 4, "sfu": 16}},
+                                       "block": {"bytes": 4, "sfu": 16}},
 }
 
 # The H100 runs of docs/results/gpu (light-off, 1920x1080, glFinish-timed, before the passes were fused:

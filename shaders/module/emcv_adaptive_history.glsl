@@ -156,15 +156,24 @@ EmcvAdaptiveState emcv_adaptive_load(ivec2 p) {
 ///             emcv_history_rescale_cv)
 ///   cv-notex  moving mean/variance of r = f - G (alpha = 1, eta 0.2), a change G does not explain clipped as
 ///             cv's (emcv_history_push_notex)
-/// A block that took no samples learns nothing about its noise and is not pushed. A non-finite f or G is
-/// refused by the port (state unchanged); a poisoned stored state is reset, never used.
-void emcv_adaptive_update(ivec2 texel, EmcvAdaptiveState s, float f, float g, float batch, float noise_ratio) {
-    if (batch == 0.0f) return;
+/// A block that took no samples learns nothing about its noise and is not pushed (returns false; true once s,
+/// pushed, is stored). A non-finite f or G is refused by the port (state unchanged); a poisoned stored state is
+/// reset, never used.
+bool emcv_adaptive_update(ivec2 texel, inout EmcvAdaptiveState s, float f, float g, float batch, float noise_ratio) {
+    if (batch == 0.0f) return false;
     emcv_adaptive_push(s, f, g, batch, noise_ratio);
     emcv_adaptive_store(texel, s);
+    return true;
 }
 
 #if defined(EMCV_ADAPTIVE_TILE_UPDATE)
+// What emcv_adaptive_update_tile stored at this invocation's block, where it stored one (updated_known): a pass
+// that reads the block's history back after its update (the next frame's plan, emcv_adaptive_stored_sigma2)
+// takes it from here where the layout's texels read back bit for bit (EMCV_ADAPTIVE_HISTORY_EXACT) instead of
+// loading the texels again.
+EmcvAdaptiveState emcv_adaptive_updated_state = emcv_adaptive_init();
+bool emcv_adaptive_updated_known = false;
+
 // The tile's pixels after sampling, at their local index: tracked f and G and the samples taken (0: none).
 shared float tile_pixel_f[EMCV_ADAPTIVE_TILE_SIZE * EMCV_ADAPTIVE_TILE_SIZE];
 shared float tile_pixel_g[EMCV_ADAPTIVE_TILE_SIZE * EMCV_ADAPTIVE_TILE_SIZE];
@@ -227,7 +236,10 @@ void emcv_adaptive_update_tile(uint local, ivec2 origin, float tracked_f, float 
     memoryBarrierShared();
     barrier();  // the tile's noise pool is complete
 #endif
-    if (emcv_adaptive_holds_block()) emcv_adaptive_update(texel, s, f, g, batch, emcv_adaptive_noise_ratio());
+    if (emcv_adaptive_holds_block()) {
+        emcv_adaptive_updated_known = emcv_adaptive_update(texel, s, f, g, batch, emcv_adaptive_noise_ratio());
+        emcv_adaptive_updated_state = s;
+    }
 }
 #endif
 

@@ -14,6 +14,7 @@
 #define EmcvAdaptiveState EmcvEmcm2
 #define EMCV_ADAPTIVE_ETA EMCV_HISTORY_ETA_EMCM  // the EMCM's weight
 #define EMCV_ADAPTIVE_NOISE_TEST 1               // the tile's noise test before the push (below)
+#define EMCV_ADAPTIVE_HISTORY_EXACT 1            // 32-bit texels: a stored state reads back as emcv_adaptive_as_stored
 
 /// A fresh (reset) state.
 EmcvAdaptiveState emcv_adaptive_init() { return emcv_emcm2_init(); }
@@ -24,6 +25,12 @@ bool emcv_adaptive_decode(vec4 a, vec4 b, out EmcvAdaptiveState s) { return emcv
 void emcv_adaptive_store(ivec2 p, EmcvAdaptiveState s) {
     emcv_app_history_store_a(p, emcv_history_encode_emcm2_cov(s));
     emcv_app_history_store_b(p, vec4(emcv_history_encode_emcm2_means(s), 0.0f, 0.0f));
+}
+
+/// The state a load of what emcv_adaptive_store(p, s) stored decodes to (its texels read back bit for bit:
+/// 32-bit formats), computed without the load; false (s reset) where that decode would find it poisoned.
+bool emcv_adaptive_as_stored(inout EmcvAdaptiveState s) {
+    return emcv_adaptive_decode(emcv_history_encode_emcm2_cov(s), vec4(emcv_history_encode_emcm2_means(s), 0.0f, 0.0f), s);
 }
 
 /// Stores texels as they were read (a kept history: no second rounding).

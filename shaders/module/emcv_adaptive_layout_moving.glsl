@@ -13,6 +13,7 @@
 #define EmcvAdaptiveState EmcvMovingStats
 #define EMCV_ADAPTIVE_ETA EMCV_HISTORY_ETA_MOVING  // the moving statistics' weight
 #define EMCV_ADAPTIVE_NOISE_TEST 0                 // no noise test: the hooks below do nothing
+#define EMCV_ADAPTIVE_HISTORY_EXACT 0              // binary16 texels: a stored state is read back to know it
 
 /// A fresh (reset) state.
 EmcvAdaptiveState emcv_adaptive_init() { return emcv_moving_stats_init(); }

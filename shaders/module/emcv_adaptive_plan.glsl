@@ -145,14 +145,24 @@ float emcv_adaptive_own_sigma2(EmcvAdaptiveBlock blk, out float frames) {
 /// so this is what it would return, bit for bit, without the pass. A poisoned texel is reset as that pass resets
 /// it. The block's code (0: no pixel on screen scatters, whose history was reset when the view last changed and
 /// stays so) and sub-pixel test are what the burley pass found this frame, which the next frame's G-buffer repeats.
-/// The invocation that stored the block's update reads it.
+/// The invocation that stored the block's update reads it: from its registers where the layout's texels read back
+/// bit for bit (emcv_adaptive_as_stored; 24 B a block fewer), else from the texels.
 float emcv_adaptive_stored_sigma2(EmcvAdaptiveBlock blk, out float frames) {
     frames = 0.0f;
     if (blk.code == 0u) return emcv_history_no_samples();
-    // this invocation's own stores: ordered after them
     EmcvAdaptiveState s;
-    if (!emcv_adaptive_decode(emcv_app_history_load_a(blk.texel), emcv_adaptive_load_b(blk.texel), s))
-        emcv_adaptive_store(blk.texel, s);
+    bool decoded;
+#if EMCV_ADAPTIVE_HISTORY_EXACT && defined(EMCV_ADAPTIVE_TILE_UPDATE)
+    if (emcv_adaptive_updated_known) {
+        s = emcv_adaptive_updated_state;
+        decoded = emcv_adaptive_as_stored(s);
+    } else
+#endif
+    {
+        // this invocation's own stores: ordered after them
+        decoded = emcv_adaptive_decode(emcv_app_history_load_a(blk.texel), emcv_adaptive_load_b(blk.texel), s);
+    }
+    if (!decoded) emcv_adaptive_store(blk.texel, s);
     return emcv_adaptive_state_sigma2(blk.sub_pixel, s, frames);
 }
 #endif

@@ -136,12 +136,16 @@ TEST_CASE("a burley pass that plans the next frame leaves every image, count and
     emcv::gl::debug_messenger messenger;
     // Still, moving, still again; the key light switches off at frame 30 (light-off), under the planned frames.
     const scene s = still_move_still();
-    for (const method& m : {method{method::kind::cv, 0}, method{method::kind::spvg, 0}, method{method::kind::cv_notex, 0}}) {
-        INFO(m.name());
+    // cv's planning pass takes the histories it stored from its registers (emcv_adaptive_as_stored), the others
+    // load them back; K = 2 plans blocks.
+    for (const method& m : {method{method::kind::cv, 0}, method{method::kind::spvg, 0}, method{method::kind::cv_notex, 0}})
+    for (const int block : {1, 2}) {
+        INFO(m.name() << ", K = " << block);
         render_options planned;
         planned.width = 48;
         planned.height = 32;
         add_define(planned.defines, "EMCV_HISTORY_SPP_BUDGET=4");
+        add_define(planned.defines, "EMCV_HISTORY_BLOCK=" + std::to_string(block));
         render_options unplanned = planned;
         add_define(unplanned.defines, "EMCV_HISTORY_PLAN_AHEAD=0");
         renderer a(s, m, planned), b(s, m, unplanned);
