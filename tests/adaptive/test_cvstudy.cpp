@@ -23,8 +23,8 @@ std::vector<method_result> run(light_curve c, bool sub_pixel = false) {
     config.seed = 1;
     config.sub_pixel = sub_pixel;
     return run_study(c,
-                     {{estimator::spvg, 0.2f}, {estimator::cv_moving, 0.05f}, {estimator::cv_emcm, 0.05f},
-                      {estimator::cv_notex, 0.2f}},
+                     {{emcv::sampling_estimator::spvg, 0.2f}, {emcv::sampling_estimator::cv, 0.05f, -1, true},
+                      {emcv::sampling_estimator::cv, 0.05f}, {emcv::sampling_estimator::cv_notex, 0.2f}},
                      config);
 }
 

@@ -58,34 +58,37 @@ public:
     int next_count() const {
         // A reset history (fewer than two frames) has no variance yet: sample at the maximum, as on failed
         // reprojection, instead of trusting a 0 that n_min = 0 would turn into no samples.
-        const std::uint64_t seen = m_.kind == estimator::cv_emcm ? fg_.count() : res_.count();
+        const std::uint64_t seen = emcm_variance() ? fg_.count() : res_.count();
         if (seen < 2) return c_.n_max;
         const float variance =
-            m_.kind == estimator::cv_emcm ? cv_optimal_residual_variance(fg_) : res_.variance();
+            emcm_variance() ? cv_optimal_residual_variance(fg_) : res_.variance();
         if (m_.n_min >= 0) return sample_count(variance, c_.target, m_.n_min, c_.n_max);
         // The paper's rules: the cv family takes 0 samples on a sub-pixel kernel (here the pixels drawn with
         // f = G exactly, the only ones whose residual variance is exactly 0), SPVG's clamp otherwise.
-        if (m_.kind != estimator::spvg && variance == 0.0f) return 0;
+        if (m_.kind != sampling_estimator::spvg && variance == 0.0f) return 0;
         return sample_count(variance, c_.target, c_.spvg_n_min, c_.n_max);
     }
 
     void push(float f, float g) {
         switch (m_.kind) {
-            case estimator::spvg: res_.push(f); break;
-            case estimator::cv_notex: res_.push(cv_residual(f, 1.0f, g)); break;
-            case estimator::cv_moving: {
-                // r_t with alpha_{t-1}, then the EMCM advances to alpha_t (Xie & Olano 2021, section 5).
-                const float alpha = cv_coefficient(fg_.covariance(0, 1), fg_.variance(1));
-                res_.push(cv_residual(f, alpha, g));
+            case sampling_estimator::spvg: res_.push(f); break;
+            case sampling_estimator::cv_notex: res_.push(cv_residual(f, 1.0f, g)); break;
+            case sampling_estimator::cv:
+                if (m_.moving_residual) {
+                    // r_t with alpha_{t-1}, then the EMCM advances to alpha_t (Xie & Olano 2021, section 5).
+                    const float alpha = cv_coefficient(fg_.covariance(0, 1), fg_.variance(1));
+                    res_.push(cv_residual(f, alpha, g));
+                }
                 fg_.push({f, g});
                 break;
-            }
-            case estimator::cv_emcm: fg_.push({f, g}); break;
         }
         if (c_.half_state != study_config::half_fields::none) store_in_half();
     }
 
 private:
+    /// Whether N comes from the EMCM's own residual variance (cv as the library has it).
+    bool emcm_variance() const { return m_.kind == sampling_estimator::cv && !m_.moving_residual; }
+
     /// What an RGBA16F history keeps between frames: every mean and (co)variance rounded to binary16 (the
     /// count is an integer below 2048, exact in half). A state that overflowed half is refused by the
     /// estimators' validating constructor and the pixel restarts, as the shader does (docs/numerics.md 4.2).
@@ -118,12 +121,8 @@ private:
 
 std::string method_config::name() const {
     std::ostringstream s;
-    switch (kind) {
-        case estimator::spvg: s << "spvg"; break;
-        case estimator::cv_notex: s << "cv-notex"; break;
-        case estimator::cv_moving: s << "cv-moving-var eta=" << eta; break;
-        case estimator::cv_emcm: s << "cv-emcm-var eta=" << eta; break;
-    }
+    s << sampling_estimator_name(kind);
+    if (kind == sampling_estimator::cv) s << (moving_residual ? "-moving-var" : "-emcm-var") << " eta=" << eta;
     if (n_min >= 0) s << " n_min=" << n_min;
     return s.str();
 }

@@ -9,28 +9,30 @@
 #include <string>
 #include <vector>
 
+#include <emcv/adaptive_sampling.hpp>
 
 namespace emcv::cvstudy {
 
 /// The light's intensity over frames (the scenes light-off, flicker, club, static).
 enum class light_curve { switch_off, flicker, sinusoid, constant };
 
-/// How a method turns its history into the next frame's sample count.
-enum class estimator {
-    spvg,           ///< moving mean/variance (eta 0.2) of f; N = clamp(var / target, 8, 64)
-    cv_moving,      ///< EMCM(eta) over (f, G) gives alpha; moving variance (eta 0.2) of r = f - alpha G
-    cv_emcm,        ///< EMCM(eta) over (f, G); Var(f - alpha G) = C_ff - C_fG^2 / C_GG
-    cv_notex,       ///< alpha = 1: moving variance (eta 0.2) of r = f - G
-};
-
+/// How a method turns its history into the next frame's sample count: the library's estimators
+/// (emcv::sampling_estimator, one list for the library, Python, the demo and the evaluation), as this study
+/// models them per pixel, and for cv the alternative section 5 rejected (method_config::moving_residual):
+///   spvg      moving mean/variance (eta 0.2) of f; N = clamp(var / target, 8, 64)
+///   cv        EMCM(eta) over (f, G); Var(f - alpha G) = C_ff - C_fG^2 / C_GG
+///   cv-notex  alpha = 1: moving variance (eta 0.2) of r = f - G
 struct method_config {
-    estimator kind = estimator::spvg;
-    float eta = 0.2f;  ///< EMCM weight (cv_moving, cv_emcm); the moving-variance weight is always 0.2
+    emcv::sampling_estimator kind = emcv::sampling_estimator::spvg;
+    float eta = 0.2f;  ///< cv's EMCM weight; the moving-variance weight is always 0.2
     /// -1: the paper's rule on the output's variance: spvg clamp(var / target, 8, 64); the cv family 0
     /// samples on a sub-pixel kernel (here: residual variance exactly 0), else SPVG's clamp. (The renderer
     /// now counts from the per-sample variance instead: docs/renderer.md; this study chose the estimator.)
     /// >= 0: plain clamp(var / target, n_min, 64).
     int n_min = -1;
+    /// cv only: the residual's variance from a moving estimate of r = f - alpha G (alpha from the EMCM) instead of
+    /// the EMCM's own C_ff - C_fG^2 / C_GG: the variant section 5 compared and the library does not ship.
+    bool moving_residual = false;
     std::string name() const;
 };
 

@@ -85,13 +85,14 @@ int main(int argc, char** argv) {
         return 2;
     }
 
-    std::vector<method_config> methods = {{estimator::spvg, 0.2f}};
-    for (float eta : {0.05f, 0.1f, 0.2f}) methods.push_back({estimator::cv_moving, eta});
-    for (float eta : {0.05f, 0.1f, 0.2f}) methods.push_back({estimator::cv_emcm, eta});
-    methods.push_back({estimator::cv_notex, 0.2f});
+    using emcv::sampling_estimator;
+    std::vector<method_config> methods = {{sampling_estimator::spvg, 0.2f}};
+    for (float eta : {0.05f, 0.1f, 0.2f}) methods.push_back({sampling_estimator::cv, eta, -1, true});
+    for (float eta : {0.05f, 0.1f, 0.2f}) methods.push_back({sampling_estimator::cv, eta});
+    methods.push_back({sampling_estimator::cv_notex, 0.2f});
     // The plain n_min = 0 the paper describes, for comparison with the renderer's rule.
-    for (float eta : {0.05f, 0.2f}) methods.push_back({estimator::cv_emcm, eta, 0});
-    methods.push_back({estimator::cv_notex, 0.2f, 0});
+    for (float eta : {0.05f, 0.2f}) methods.push_back({sampling_estimator::cv, eta, 0});
+    methods.push_back({sampling_estimator::cv_notex, 0.2f, 0});
 
     std::cout << "emcv-cvstudy: " << config.pixels << " pixels, seed " << config.seed << ", target "
               << config.target << ", N_max " << config.n_max << "; window: " << config.window_frames
