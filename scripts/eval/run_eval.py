@@ -453,19 +453,22 @@ def parse_lights(text):
 
 def light_changes(lights):
     """(first change, [changes]): the first frame whose lights differ from the frame before, and the light steps
-    (a light that held its intensity over the two frames before moving by over STEP of its largest value: a
-    step, not a point of a curve that moves every frame), steps closer than MERGE_STEPS frames merged into one
-    change at the first of them. Each change is (frame, end of its quiet window, text)."""
+    (a light that held its intensity over the two frames before, or stepped into the frame before, moving by over
+    STEP of its largest value: a step, not a point of a curve that moves every frame; a burst that ends where the
+    next begins is two steps), steps closer than MERGE_STEPS frames merged into one change at the first of them.
+    Each change is (frame, end of its quiet window, text)."""
     frames = sorted(lights)
     names = sorted({n for f in frames for n in lights[f]})
     top = {n: max(lights[f].get(n, 0.0) for f in frames) for n in names}
-    first, steps = None, []
+    first, steps, stepped = None, [], set()
     for i, (a, b) in enumerate(zip(frames, frames[1:])):
         moved = [n for n in names if lights[b].get(n, 0.0) != lights[a].get(n, 0.0)]
         if moved and first is None:
             first = b
-        steady = [n for n in moved if i > 0 and lights[a].get(n, 0.0) == lights[frames[i - 1]].get(n, 0.0)]
+        steady = [n for n in moved
+                  if i > 0 and (n in stepped or lights[a].get(n, 0.0) == lights[frames[i - 1]].get(n, 0.0))]
         big = [n for n in steady if top[n] > 0 and abs(lights[b][n] - lights[a][n]) > STEP * top[n]]
+        stepped = set(big)
         if big:
             steps.append((b, ", ".join(f"{n} {lights[a][n]:g}->{lights[b][n]:g}" for n in big)))
     groups = []
