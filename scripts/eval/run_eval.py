@@ -72,9 +72,10 @@ BUDGETS = [4, 8, 16, 32]
 VARIATION_BUDGETS = [8, 16]
 STORY_BUDGET = 8  # the budget of the switch story, the per-frame plots and the banding crop
 SEPARABLE = ["separable-11", "separable-17", "separable-25"]
-ADAPTIVE = ["spvg", "cv", "cv-notex"]  # checked against emcv-demo --list-methods ("adaptive" passes)
-FAMILIES = ["burley", "separable", "spvg", "cv", "cv-notex"]
-TEASER_METHODS = ["separable-17", "spvg", "cv", "cv-notex"]
+# The adaptive methods, each a family of its own, and the teaser's methods: from emcv-demo's method table
+# (use_methods, --list-methods' "adaptive" rows), never a list of this script's own.
+ADAPTIVE, FAMILIES, TEASER_METHODS = [], [], []
+METHODS_FILE = "methods.tsv"  # beside the raw files: the --list-methods of the build that rendered them
 SWITCH_FRAME = 30  # light-off: the key light's step (demo/scenes/light-off.json)
 # The paper's teaser (Xie & Olano 2021, Fig. 1): SSS sampling pass ms and PSNR after the switch.
 PAPER = {"separable": (4.0, None), "spvg": (12.9, 48.6), "cv": (5.2, 47.5)}
@@ -1224,12 +1225,38 @@ def check_tools(build, jobs):
     for tool in sorted({j.tool for j in jobs}):
         if not os.access(os.path.join(build, "bin", tool), os.X_OK):
             die(f"no {tool} in {build}/bin (cmake --build {build} --target emcv-demo emcv-eval emcv-golden)")
+
+
+def use_methods(listing):
+    """Sets ADAPTIVE (the rows of `emcv-demo --list-methods` whose passes are "adaptive", in its order), FAMILIES
+    (burley, separable, then each adaptive method) and TEASER_METHODS (separable-17, then the adaptive methods)."""
+    global ADAPTIVE, FAMILIES, TEASER_METHODS
+    ADAPTIVE = [line.split("\t")[0] for line in listing.splitlines() if line.split("\t")[1:2] == ["adaptive"]]
+    if not ADAPTIVE:
+        die("the method listing names no adaptive method (emcv-demo --list-methods: <name> TAB <passes> TAB <what>)")
+    FAMILIES = ["burley", "separable"] + ADAPTIVE
+    TEASER_METHODS = ["separable-17"] + ADAPTIVE
+
+
+def method_listing(build, raw_dir, merge):
+    """emcv-demo's --list-methods: for a merge, the one stored beside the raw files by the run that rendered them
+    (METHODS_FILE), else the build's, which a render stores there."""
+    stored = os.path.join(raw_dir, METHODS_FILE) if raw_dir else None
+    if merge and stored and os.path.isfile(stored):
+        with open(stored, encoding="utf-8") as f:
+            return f.read()
     demo = os.path.join(build, "bin", "emcv-demo")
-    if os.access(demo, os.X_OK):
-        listed = subprocess.run([demo, "--list-methods"], capture_output=True, text=True).stdout
-        adaptive = [l.split("\t")[0] for l in listed.splitlines() if l.split("\t")[1:2] == ["adaptive"]]
-        if adaptive != ADAPTIVE:
-            die(f"emcv-demo --list-methods names the adaptive methods {adaptive}, this script knows {ADAPTIVE}")
+    if not os.access(demo, os.X_OK):
+        die(f"no emcv-demo in {build}/bin to list the methods (cmake --build {build} --target emcv-demo)"
+            + (f", and no {METHODS_FILE} in {shown(raw_dir)}" if merge and raw_dir else ""))
+    r = subprocess.run([demo, "--list-methods"], capture_output=True, text=True)
+    if r.returncode != 0:
+        die(f"emcv-demo --list-methods failed: {r.stderr.strip()}")
+    if stored and not merge:
+        os.makedirs(raw_dir, exist_ok=True)
+        with open(stored, "w", encoding="utf-8") as f:
+            f.write(r.stdout)
+    return r.stdout
 
 
 def shard_jobs(a, jobs):
@@ -1254,6 +1281,7 @@ def render(a, jobs, raw_dir, workers):
 
 
 def check_determinism(a):
+    use_methods(method_listing(a.build, None, False))
     c = Config("64x64", a.seeds[:1], True, ["lights", "quality", "variations"])
     jobs = job_list(c)
     tables = []
@@ -1306,13 +1334,14 @@ def main(argv):
         check_determinism(a)
         return
     c = Config(a.size, a.seeds, a.quick, a.stages)
+    raw_dir = os.path.abspath(a.raw_dir or (os.path.join(tempfile.gettempdir(), "emcv-eval-quick") if a.quick
+                                            else DEFAULT_RAW))
+    use_methods(method_listing(a.build, None if a.list else raw_dir, a.merge))
     jobs = job_list(c)
     if a.list:
         for j in shard_jobs(a, jobs):
             print(f"{j.index}\t{j.stage}/{j.name}\t{'timing' if j.serial else 'quality'}\t{j.command_text()}")
         return
-    raw_dir = os.path.abspath(a.raw_dir or (os.path.join(tempfile.gettempdir(), "emcv-eval-quick") if a.quick
-                                            else DEFAULT_RAW))
     default = raw_dir == DEFAULT_RAW and not a.quick
     out_dir = RESULTS if default else os.path.join(raw_dir, "out")
     if not a.merge:

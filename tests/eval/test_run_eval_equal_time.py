@@ -20,6 +20,8 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 sys.path.insert(0, os.path.join(ROOT, "scripts", "eval"))
 import run_eval  # noqa: E402
 
+# The method table's adaptive rows as emcv-demo --list-methods prints them (run_eval takes its lists from there).
+run_eval.use_methods("burley-16\tburley\t...\nspvg\tadaptive\t...\ncv\tadaptive\t...\ncv-notex\tadaptive\t...\n")
 SCENE = "static"
 # (group, method) -> (SSS ms, raw dB, resolved dB), the same every frame from MEAN_FROM on.
 POINTS = {
