@@ -13,6 +13,7 @@
 #define EMCV_ADAPTIVE_BUDGET_H
 
 #include "emcv/port/history.h"
+#include "module/emcv_adaptive_language.glsl"
 
 #if !defined(EMCV_APP_BUDGET)
 #error "define EMCV_APP_BUDGET as the application's EmcvBudgetBlock (a std430 buffer member) before this module"
@@ -26,14 +27,14 @@
 /// cost every workgroup a walk over all the bins.
 void emcv_budget_add(float sigma2, uint pixels) {
     if (sigma2 == emcv_history_no_samples()) {
-        atomicAdd(EMCV_APP_BUDGET.zero_pixels, pixels);
+        EMCV_ATOMIC_ADD(EMCV_APP_BUDGET.zero_pixels, pixels);
     } else if (!(sigma2 >= 0.0f)) {
-        atomicAdd(EMCV_APP_BUDGET.default_pixels, pixels);
+        EMCV_ATOMIC_ADD(EMCV_APP_BUDGET.default_pixels, pixels);
     } else {
         float sigma = sqrt(sigma2);
         uint bin = emcv_budget_bin(sigma);
-        atomicAdd(EMCV_APP_BUDGET.bin_count[bin], pixels);
-        atomicAdd(EMCV_APP_BUDGET.bin_fraction[bin], pixels * emcv_budget_fraction(sigma));
+        EMCV_ATOMIC_ADD(EMCV_APP_BUDGET.bin_count[bin], pixels);
+        EMCV_ATOMIC_ADD(EMCV_APP_BUDGET.bin_fraction[bin], pixels * emcv_budget_fraction(sigma));
     }
 }
 
@@ -42,8 +43,8 @@ void emcv_budget_add(float sigma2, uint pixels) {
 /// C++, a pixel at a time).
 void emcv_budget_add_raw(float sigma2, float frames, uint pixels) {
     if (!(sigma2 >= 0.0f) || !(frames > 0.0f)) return;
-    atomicAdd(EMCV_APP_BUDGET.raw_count[emcv_budget_bin(sqrt(sigma2))], pixels);
-    atomicAdd(EMCV_APP_BUDGET.raw_inverse_frames, pixels * emcv_history_inverse_frames_units(frames));
+    EMCV_ATOMIC_ADD(EMCV_APP_BUDGET.raw_count[emcv_budget_bin(sqrt(sigma2))], pixels);
+    EMCV_ATOMIC_ADD(EMCV_APP_BUDGET.raw_inverse_frames, pixels * emcv_history_inverse_frames_units(frames));
 }
 
 #if defined(EMCV_BUDGET_GROUP_THREADS)
@@ -84,25 +85,30 @@ void emcv_budget_solve(uint thread) {
     // then the non-empty ones packed in bin order at the front (a frame fills a few tens of the 256).
     for (uint k = 0u; k < uint(EMCV_BUDGET_BINS_PER_THREAD); ++k) {
         uint bin = thread + k * uint(EMCV_BUDGET_GROUP_THREADS);
-        uint count = atomicExchange(EMCV_APP_BUDGET.bin_count[bin], 0u);
-        uint fraction = atomicExchange(EMCV_APP_BUDGET.bin_fraction[bin], 0u);
+        uint count, fraction;
+        EMCV_ATOMIC_EXCHANGE(EMCV_APP_BUDGET.bin_count[bin], 0u, count);
+        EMCV_ATOMIC_EXCHANGE(EMCV_APP_BUDGET.bin_fraction[bin], 0u, fraction);
         emcv_budget_group_count[bin] = count;
         emcv_budget_group_fraction[bin] = floatBitsToUint(emcv_budget_bin_sum(bin, count, fraction));
     }
-    if (thread == 0u) emcv_budget_group_zero = atomicExchange(EMCV_APP_BUDGET.zero_pixels, 0u);
+    if (thread == 0u) EMCV_ATOMIC_EXCHANGE(EMCV_APP_BUDGET.zero_pixels, 0u, emcv_budget_group_zero);
     {  // the next frame's prior (emcv_history_frame_prior): each thread's bins, then thread 0 adds the threads
-        vec3 moments = vec3(0.0f);
+        vec3 moments = vec3(0.0f, 0.0f, 0.0f);
         for (uint k = 0u; k < uint(EMCV_BUDGET_BINS_PER_THREAD); ++k) {
             uint bin = thread + k * uint(EMCV_BUDGET_GROUP_THREADS);
-            moments = emcv_history_moments_add(moments, bin, atomicExchange(EMCV_APP_BUDGET.raw_count[bin], 0u));
+            uint raw_count;
+            EMCV_ATOMIC_EXCHANGE(EMCV_APP_BUDGET.raw_count[bin], 0u, raw_count);
+            moments = emcv_history_moments_add(moments, bin, raw_count);
         }
         emcv_budget_moments[thread] = moments;
     }
     barrier();
     if (thread == 0u) {
-        vec3 moments = vec3(0.0f);
+        vec3 moments = vec3(0.0f, 0.0f, 0.0f);
         for (uint t = 0u; t < uint(EMCV_BUDGET_GROUP_THREADS); ++t) moments += emcv_budget_moments[t];
-        emcv_budget_prior = emcv_history_frame_prior(moments, atomicExchange(EMCV_APP_BUDGET.raw_inverse_frames, 0u),
+        uint raw_inverse_frames;
+        EMCV_ATOMIC_EXCHANGE(EMCV_APP_BUDGET.raw_inverse_frames, 0u, raw_inverse_frames);
+        emcv_budget_prior = emcv_history_frame_prior(moments, raw_inverse_frames,
                                                      emcv_history_spend_relative_variance());
     }
     barrier();
@@ -131,7 +137,7 @@ void emcv_budget_solve(uint thread) {
         barrier();
         uint candidate = low + step * (thread + 1u);  // increasing with the thread; never past 2^32 (see above)
         if (candidate < high && emcv_budget_total(emcv_bits_float(candidate), n_min, n_max) < planned)
-            atomicAdd(emcv_budget_below, 1u);
+            EMCV_ATOMIC_ADD(emcv_budget_below, 1u);
         barrier();
         uint below = emcv_budget_below;  // the total is monotone: the first `below` candidates fall short
         barrier();                       // everyone has read it before the next round clears it
@@ -144,7 +150,8 @@ void emcv_budget_solve(uint thread) {
         EMCV_APP_BUDGET.planned = planned;
         EMCV_APP_BUDGET.mean_sigma2 = emcv_budget_prior.x;
         EMCV_APP_BUDGET.between_variance = emcv_budget_prior.y;
-        atomicExchange(EMCV_APP_BUDGET.default_pixels, 0u);
+        uint default_pixels;  // not read: the exchange clears the counter
+        EMCV_ATOMIC_EXCHANGE(EMCV_APP_BUDGET.default_pixels, 0u, default_pixels);
         EMCV_APP_BUDGET.solves += 1u;
     }
 }

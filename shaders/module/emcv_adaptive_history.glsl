@@ -12,6 +12,7 @@
 #define EMCV_ADAPTIVE_HISTORY_H
 
 #include "emcv/port/history.h"
+#include "module/emcv_adaptive_language.glsl"
 
 // The tile's side in pixels, the workgroup's size in each dimension. Range: 8 (a multiple of 4, so that every K
 // divides it; the renderer's SSS tiles are 8x8).
@@ -86,7 +87,7 @@ void emcv_adaptive_share_pixel(uint local, uint code, bool sub_pixel) {
 
 /// The workgroup's tile origin (its pixel (0, 0)) from pixel p of this invocation before any reordering, or
 /// (-1, -1) for a workgroup past the tile count.
-ivec2 emcv_adaptive_tile_origin(ivec2 p) { return p.x >= 0 ? p - ivec2(gl_LocalInvocationID.xy) : ivec2(-1); }
+ivec2 emcv_adaptive_tile_origin(ivec2 p) { return p.x >= 0 ? p - ivec2(gl_LocalInvocationID.xy) : ivec2(-1, -1); }
 
 /// Block j's position within its tile, in blocks.
 ivec2 emcv_adaptive_block_local(uint j) {
@@ -99,14 +100,24 @@ ivec2 emcv_adaptive_grid() {
 }
 
 /// Whether p lies in [0, size).
-bool emcv_adaptive_inside(ivec2 p, ivec2 size) { return all(greaterThanEqual(p, ivec2(0))) && all(lessThan(p, size)); }
+bool emcv_adaptive_inside(ivec2 p, ivec2 size) {
+    return all(greaterThanEqual(p, ivec2(0, 0))) && all(lessThan(p, size));
+}
 /// Whether pixel p is on screen.
 bool emcv_adaptive_on_screen(ivec2 p) { return emcv_adaptive_inside(p, emcv_app_viewport_size()); }
 /// Whether t is a texel of the block grid (at K = 1, emcv_adaptive_on_screen).
 bool emcv_adaptive_on_grid(ivec2 t) { return emcv_adaptive_inside(t, emcv_adaptive_grid()); }
 
 /// No block (an invocation that holds none).
-EmcvAdaptiveBlock emcv_adaptive_no_block() { return EmcvAdaptiveBlock(ivec2(-1), ivec2(-1), 0u, 0u, false); }
+EmcvAdaptiveBlock emcv_adaptive_no_block() {
+    EmcvAdaptiveBlock b;
+    b.texel = ivec2(-1, -1);
+    b.pixel = ivec2(-1, -1);
+    b.code = 0u;
+    b.pixels = 0u;
+    b.sub_pixel = false;
+    return b;
+}
 
 /// Block j of the tile at `origin` (emcv_adaptive_tile_origin) from the pixels shared in the tile's arrays: its
 /// texel, representative, code, scattering pixels and whether all of them are sub-pixel. At K = 1 the block is
@@ -170,9 +181,10 @@ bool emcv_adaptive_update(ivec2 texel, inout EmcvAdaptiveState s, float f, float
 // What emcv_adaptive_update_tile stored at this invocation's block, where it stored one (updated_known): a pass
 // that reads the block's history back after its update (the next frame's plan, emcv_adaptive_stored_sigma2)
 // takes it from here where the layout's texels read back bit for bit (EMCV_ADAPTIVE_HISTORY_EXACT) instead of
-// loading the texels again.
-EmcvAdaptiveState emcv_adaptive_updated_state = emcv_adaptive_init();
-bool emcv_adaptive_updated_known = false;
+// loading the texels again. The state has no initialiser: it is read only where updated_known is true (and
+// glslang's HLSL front end refuses a global initialised by a call).
+EMCV_STATIC EmcvAdaptiveState emcv_adaptive_updated_state;
+EMCV_STATIC bool emcv_adaptive_updated_known = false;
 
 // The tile's pixels after sampling, at their local index: tracked f and G and the samples taken (0: none).
 shared float tile_pixel_f[EMCV_ADAPTIVE_TILE_SIZE * EMCV_ADAPTIVE_TILE_SIZE];
@@ -199,7 +211,7 @@ void emcv_adaptive_update_tile(uint local, ivec2 origin, float tracked_f, float 
     memoryBarrierShared();
     barrier();
     EmcvAdaptiveState s = emcv_adaptive_init();
-    ivec2 texel = ivec2(-1);
+    ivec2 texel = ivec2(-1, -1);
     float f = 0.0f;
     float g = 0.0f;
     float batch = 0.0f;
@@ -243,4 +255,4 @@ void emcv_adaptive_update_tile(uint local, ivec2 origin, float tracked_f, float 
 }
 #endif
 
-#endif  // #ifndef EMCV_ADAPTIVE_HISTORY_IO_H
+#endif  // #ifndef EMCV_ADAPTIVE_HISTORY_H

@@ -88,12 +88,12 @@ void emcv_adaptive_noise_clear(uint local) {
 /// the tile's pool, where it has one (a history as old as its memory, a batch taken).
 void emcv_adaptive_noise_add(EmcvAdaptiveState s, float f, float g, float batch) {
     float term = batch > 0.0f ? emcv_history_noise_term(s, f, g, EMCV_ADAPTIVE_ETA, batch) : emcv_history_no_variance();
-    uvec3 own = uvec3(0u);
+    uvec3 own = uvec3(0u, 0u, 0u);
     emcv_history_noise_add(own, term, emcv_history_noise_relative(max(batch, 1.0f)));
     if (own.z != 0u) {
-        atomicAdd(tile_noise_pool[0], own.x);
-        atomicAdd(tile_noise_pool[1], own.y);
-        atomicAdd(tile_noise_pool[2], own.z);
+        EMCV_ATOMIC_ADD(tile_noise_pool[0], own.x);
+        EMCV_ATOMIC_ADD(tile_noise_pool[1], own.y);
+        EMCV_ATOMIC_ADD(tile_noise_pool[2], own.z);
     }
 }
 

@@ -27,8 +27,8 @@ void emcv_adaptive_store(ivec2 p, EmcvAdaptiveState s) { emcv_app_history_store_
 void emcv_adaptive_store_raw(ivec2 p, vec4 a, vec4 b) { emcv_app_history_store_a(p, a); }
 
 /// No second texel: zeros.
-vec4 emcv_adaptive_load_b(ivec2 p) { return vec4(0.0f); }
-vec4 emcv_adaptive_previous_b(ivec2 q) { return vec4(0.0f); }
+vec4 emcv_adaptive_load_b(ivec2 p) { return vec4(0.0f, 0.0f, 0.0f, 0.0f); }
+vec4 emcv_adaptive_previous_b(ivec2 q) { return vec4(0.0f, 0.0f, 0.0f, 0.0f); }
 
 /// Resampling a reprojected history: adds w times a neighbour's mean and variance (not the count) to a running
 /// blend (a fresh state, emcv_adaptive_init(), to start: its statistics are 0).

@@ -58,8 +58,8 @@ bool emcv_adaptive_same_surface(ivec2 q, uint material, float expected_prev_dept
 /// rounding).
 bool emcv_adaptive_reproject(EmcvAdaptiveBlock blk, out vec4 a, out vec4 b, out EmcvAdaptiveState s,
                              out bool resampled) {
-    a = vec4(0.0f);
-    b = vec4(0.0f);
+    a = vec4(0.0f, 0.0f, 0.0f, 0.0f);
+    b = vec4(0.0f, 0.0f, 0.0f, 0.0f);
     s = emcv_adaptive_init();
     resampled = false;
     ivec2 p = blk.pixel;
@@ -78,7 +78,7 @@ bool emcv_adaptive_reproject(EmcvAdaptiveBlock blk, out vec4 a, out vec4 b, out 
     if (!emcv_adaptive_decode(a, b, s)) return false;
     ivec2 base = ivec2(floor(x));
     vec2 t = x - vec2(base);
-    if (t == vec2(0.0f) || s.count < 1u) return true;
+    if (all(equal(t, vec2(0.0f, 0.0f))) || s.count < 1u) return true;
     EmcvAdaptiveState blend = emcv_adaptive_init();
     float weight = 0.0f;
     for (int k = 0; k < 4; ++k) {
@@ -87,11 +87,11 @@ bool emcv_adaptive_reproject(EmcvAdaptiveBlock blk, out vec4 a, out vec4 b, out 
         ivec2 r = base + o;
         if (w == 0.0f) continue;
         EmcvAdaptiveState neighbour = s;  // `texel` itself: tested and decoded above
-        if (r != texel && (!emcv_adaptive_on_grid(r) ||
-                           !emcv_adaptive_same_surface(q + (r - texel) * EMCV_HISTORY_BLOCK, blk.code,
-                                                       expected_prev_depth, normal) ||
-                           !emcv_adaptive_decode(emcv_app_history_previous_a(r), emcv_adaptive_previous_b(r), neighbour) ||
-                           neighbour.count < 1u))
+        if (any(notEqual(r, texel)) &&
+            (!emcv_adaptive_on_grid(r) ||
+             !emcv_adaptive_same_surface(q + (r - texel) * EMCV_HISTORY_BLOCK, blk.code, expected_prev_depth, normal) ||
+             !emcv_adaptive_decode(emcv_app_history_previous_a(r), emcv_adaptive_previous_b(r), neighbour) ||
+             neighbour.count < 1u))
             continue;
         emcv_adaptive_blend_add(blend, w, neighbour);
         weight += w;
@@ -188,7 +188,9 @@ float emcv_adaptive_pooled_sigma2(uint j, float own, uint code, out float pooled
     for (int dy = -1; dy <= 1; ++dy) {
         for (int dx = -1; dx <= 1; ++dx) {
             ivec2 q = l + ivec2(dx, dy);
-            if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(EMCV_ADAPTIVE_TILE_BLOCKS_SIDE)))) continue;
+            if (any(lessThan(q, ivec2(0, 0))) ||
+                any(greaterThanEqual(q, ivec2(EMCV_ADAPTIVE_TILE_BLOCKS_SIDE, EMCV_ADAPTIVE_TILE_BLOCKS_SIDE))))
+                continue;
             uint i = uint(q.x + q.y * EMCV_ADAPTIVE_TILE_BLOCKS_SIDE);
             if (tile_code[i] != code) continue;
             emcv_history_pool_add_frames(inverse_frames, tile_sigma2[i], tile_frames[i]);

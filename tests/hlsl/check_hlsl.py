@@ -14,6 +14,21 @@ check_hlsl.py layout   --module M --port-glsl G --consumer C --host-layout H --g
     pinned in D3D_EXPECTED, compared with emcv/port/host.hpp's std430 mirrors and the port's C++ structs (H
     prints them) and cross-checked by tools: glslang's scalar block layout (tight packing, as a Direct3D
     structured buffer) and spirv-cross's HLSL cbuffer packing check.
+check_hlsl.py gpu-modules --modules-dir D --source-modules S --generator G --module M --cmake C --glslang V --work W
+    D (share/emcv/module/hlsl) holds the HLSL version of every GPU module of S (shaders/module) and the language
+    file: libraries, include-guarded, without entry point, resource or register; each is its GLSL module's code
+    with only the #include lines rewritten (one implementation); together, after M, they compile with glslang's
+    HLSL front end for every method, without an entry point or any emcv_app_* definition. G
+    (cmake/emcv_module_hlsl.cmake) writes D's files from S as they are now, and refuses modules that hold each
+    GLSL-only construct it names; the library check refuses a module with a resource, an entry point or no guard.
+check_hlsl.py gpu-modules-consumer --modules-dir D --module M --port-glsl G --port-kernel K --port-script P
+                                   --consumer-dir C --cmake X --glslang V --spirv-cross Y --work W
+    C (tests/hlsl/modules) is an HLSL engine's side of the modules (app.hlsl: its own resources and emcv_app_*
+    functions) and its passes: plan, solve, count, update (also with EMCV_ADAPTIVE_PLAN_NEXT) and quality. Each
+    compiles with glslang's HLSL front end for every method, against M (the installed port: a quality target at
+    K = 1) and against the port translated in budget mode (P with EMCV_HISTORY_SPP_BUDGET 8.0f) at K = 1, 2 and 4;
+    its descriptors are C's own, and no bool vector is read where GLSL's scalar == would be (a vector compare in a
+    module, which glslang narrows to its first component without a word).
 Exit 0 pass, 1 fail, 77 skipped (a tool missing).
 """
 import argparse
@@ -334,10 +349,238 @@ void main() { a[1].count = b[1].count + c[1].solves; }
           "EmcvBudgetBlock: host.hpp's in a StructuredBuffer, not for a cbuffer)")
 
 
+# ---- the GPU modules for HLSL (cmake/emcv_module_hlsl.cmake) -------------------------------------------------------
+
+LANGUAGE = "emcv_adaptive_language"
+
+
+def library_problems(text):
+    """What keeps an HLSL file from being a library to #include: a resource, a register, an entry point, no guard."""
+    code = re.sub(r"//[^\n]*", "", text)
+    code = re.sub(r"#\s*error[^\n]*", "", code)  # messages may name anything
+    problems = []
+    for pattern, what in [(r"\bregister\s*\(", "a register"), (r"\bpackoffset\b", "a packoffset"),
+                          (r"\bcbuffer\b|\btbuffer\b|\bConstantBuffer\b|\buniform\b", "a constant buffer"),
+                          (r"\b(RW)?(ByteAddress|Structured)Buffer\b|\b(RW)?Texture\w*\b|\bSamplerState\b"
+                           r"|\blayout\s*\(|\bbuffer\s+\w+\s*\{", "a resource"),
+                          (r"\bnumthreads\b", "an entry point's [numthreads]"), (r"\bmain\s*\(", "a `main`")]:
+        found = re.search(pattern, code)
+        if found:
+            problems.append(f"{what} ({found.group(0)!r})")
+    guard = re.match(r"(?:\s*//[^\n]*\n|\s*\n)*#ifndef (\w+)\n#define \1\n", text)
+    if not guard or not re.search(r"\n#endif[^\n]*\s*$", text):
+        problems.append("no include guard (#ifndef X / #define X first, #endif last)")
+    return problems
+
+
+def hlsl_line(glsl_line, names):
+    """A GLSL module's line as cmake/emcv_module_hlsl.cmake writes it into the module's HLSL file."""
+    m = re.match(r'\s*#\s*include\s*(.*)$', glsl_line)
+    if not m:
+        return glsl_line
+    target = m.group(1)
+    if re.match(r'"emcv/port/[a-z_]+\.h"', target):
+        return f"// {target}: emcv_port.hlsl, which the application includes first"
+    m = re.fullmatch(r'"module/([a-z0-9_]+)\.glsl"', target)
+    if m and m.group(1) in names:
+        return f'#include "{m.group(1)}.hlsl"'
+    fail(f"an #include the generator does not know: {glsl_line}")
+
+
+def glsl_modules(source_dir):
+    return sorted(f[:-5] for f in os.listdir(source_dir) if f.endswith(".glsl") and f != LANGUAGE + ".glsl")
+
+
+def compile_hlsl(args, source, includes, defines=(), spv=None, listing=False):
+    """glslang's HLSL front end on `source`: (exit code, output)."""
+    command = [args.glslang, "-D", "-V", "-e", "main", "-S", "comp"] + [f"-D{d}" for d in defines]
+    command += ["-I" + os.path.abspath(i) for i in includes]
+    command += (["-H"] if listing else []) + [source, "-o", spv or os.path.join(args.work, "unused.spv")]
+    return run(command, expect_ok=False)
+
+
+def check_gpu_modules(args):
+    os.makedirs(args.work, exist_ok=True)
+    names = glsl_modules(args.source_modules)
+    want = sorted([n + ".hlsl" for n in names] + [LANGUAGE + ".hlsl"])
+    have = sorted(os.listdir(args.modules_dir))
+    if have != want or not names:
+        fail(f"{args.modules_dir} holds {have}, not the HLSL versions of {args.source_modules}'s modules {want}")
+    if read(os.path.join(args.modules_dir, LANGUAGE + ".hlsl")) != read(
+            os.path.join(args.source_modules, "hlsl", LANGUAGE + ".hlsl")):
+        fail(f"{args.modules_dir}/{LANGUAGE}.hlsl is not shaders/module/hlsl's (rebuild emcv)")
+    for name in want:
+        problems = library_problems(read(os.path.join(args.modules_dir, name)))
+        if problems:
+            fail(f"{args.modules_dir}/{name} is not a library to #include: {'; '.join(problems)}")
+
+    # one implementation: each HLSL module is its GLSL module, #include lines rewritten, after the generated header
+    for name in names:
+        glsl = read(os.path.join(args.source_modules, name + ".glsl")).split("\n")
+        hlsl = read(os.path.join(args.modules_dir, name + ".hlsl")).split("\n")
+        header = next((i + 1 for i, l in enumerate(hlsl) if l == "// The GLSL file's header follows."), len(hlsl))
+        expected = [hlsl_line(l, names + [LANGUAGE]) for l in glsl[1:]]
+        if not hlsl[0].startswith("// SPDX-License-Identifier") or hlsl[header:] != expected:
+            line = next((i for i, (a, b) in enumerate(zip(hlsl[header:], expected)) if a != b), None)
+            fail(f"{name}.hlsl is not {name}.glsl with its #includes rewritten (first difference at GLSL line "
+                 f"{(line or 0) + 2}): rebuild emcv (the emcv_shader_files target)")
+
+    # the generator, on the modules as they are now, writes these files (not stale), and refuses each construct
+    fresh = os.path.join(args.work, "fresh")
+    shutil.rmtree(fresh, ignore_errors=True)
+    run([args.cmake, f"-DMODULE_DIR={args.source_modules}", f"-DOUTPUT_DIR={fresh}", "-P", args.generator])
+    for name in want:
+        if read(os.path.join(fresh, name)) != read(os.path.join(args.modules_dir, name)):
+            fail(f"{args.modules_dir}/{name} is stale: the generator writes {fresh}/{name} from the modules now")
+    refused = check_generator_refuses(args, names)
+
+    # the library check refuses what a module must not hold
+    sample = read(os.path.join(args.modules_dir, names[0] + ".hlsl"))
+    guard_end = sample.rindex("#endif")
+    def added(line):
+        return sample[:guard_end] + line + "\n" + sample[guard_end:]
+    for what, mutant in [("a resource", added("RWTexture2D<float4> leak : register(u7);")),
+                         ("an entry point", added("[numthreads(8, 8, 1)] void main() {}")),
+                         ("a constant buffer", added("cbuffer Leak { uint leak; };")),
+                         ("no include guard", re.sub(r"#ifndef (\w+)\n#define \1\n", "", sample, count=1))]:
+        if not library_problems(mutant):
+            fail(f"the library check missed {what} added to {names[0]}.hlsl")
+
+    # all of them after emcv_port.hlsl, twice (the guards hold), for each method: they compile, with no entry
+    # point and none of the application's functions defined (they only declare them)
+    for method in ("CV", "SPVG", "NOTEX"):
+        wrapper = os.path.join(args.work, f"modules_{method.lower()}.hlsl")
+        with open(wrapper, "w", encoding="utf-8") as f:
+            f.write('#include "emcv_port.hlsl"\nRWStructuredBuffer<EmcvBudgetBlock> budget : register(u0);\n'
+                    "#define EMCV_APP_BUDGET budget[0]\n#define EMCV_BUDGET_GROUP_THREADS 64\n"
+                    "#define EMCV_ADAPTIVE_TILE_UPDATE 1\n#define EMCV_ADAPTIVE_PLAN_NEXT 1\n"
+                    + "".join(f'#include "{n}.hlsl"\n' for n in names * 2))
+        rc, out = compile_hlsl(args, wrapper, [os.path.dirname(args.module), args.modules_dir],
+                               [f"EMCV_ADAPTIVE_{method}=1"])
+        if "Entry point not found" not in out or "ERROR:" in out:
+            fail(f"the HLSL modules for EMCV_ADAPTIVE_{method} do not compile alone, or hold an entry point "
+                 f"(exit {rc}):\n{out}")
+    print(f"hlsl gpu modules: OK ({len(names)} modules + {LANGUAGE}.hlsl: libraries, their GLSL code, compiled for "
+          f"3 methods; the generator refuses {refused} GLSL-only constructs)")
+
+
+# What the generator must refuse: (module, line added before its include guard's #endif, the rule it names).
+GENERATOR_MUTANTS = [
+    ("emcv_adaptive_plan", "vec4 emcv_mutant() { return vec4(0.0f); }", "HLSL has no splat"),
+    ("emcv_adaptive_history", "ivec2 emcv_mutant() { return ivec2(EMCV_ADAPTIVE_TILE_SIZE); }", "HLSL has no splat"),
+    ("emcv_adaptive_history",
+     "EmcvAdaptiveBlock emcv_mutant() { return EmcvAdaptiveBlock(ivec2(-1, -1), ivec2(-1, -1), 0u, 0u, false); }",
+     "no struct constructor"),
+    ("emcv_adaptive_plan", "bool emcv_mutant(vec2 t) { return t == vec2(0.0f, 0.0f); }", "componentwise"),
+    ("emcv_adaptive_plan", "bool emcv_mutant(ivec2 r) { return ivec2(1, 2) != r; }", "componentwise"),
+    ("emcv_adaptive_history", "uint emcv_mutant_count = 0u;", "a global is `shared` or EMCV_STATIC"),
+    ("emcv_adaptive_history", "EMCV_STATIC EmcvAdaptiveState emcv_mutant_state = emcv_adaptive_init();",
+     "no global initialised by a call"),
+    ("emcv_adaptive_budget", "const uint emcv_mutant_bins = 4u;", "a global constant is a #define"),
+    ("emcv_adaptive_budget", "float emcv_mutant() { float t[2] = float[](1.0f, 2.0f); return t[0]; }",
+     "no array constructor"),
+    ("emcv_adaptive_plan", "uint emcv_mutant() { return uint(tile_code.length()); }", "no .length()"),
+    ("emcv_adaptive_budget", "layout(std430, binding = 9) buffer Leak { uint leak[]; };", "no resource in a module"),
+    ("emcv_adaptive_plan", "uint emcv_mutant() { return gl_GlobalInvocationID.x; }", "no GLSL built-in variable"),
+    ("emcv_adaptive_layout_moving", '#include "render/frame.h"', "includes the port's headers and the modules only"),
+    ("emcv_adaptive_layout_emcm2", "#extension GL_EXT_shader_atomic_float : require", "no #version, #extension"),
+]
+
+
+def check_generator_refuses(args, names):
+    for i, (module, line, rule) in enumerate(GENERATOR_MUTANTS):
+        if module not in names:
+            fail(f"the mutant of {module}: no such module")
+        copy = os.path.join(args.work, f"mutant_{i}")
+        shutil.rmtree(copy, ignore_errors=True)
+        shutil.copytree(args.source_modules, os.path.join(copy, "module"))
+        path = os.path.join(copy, "module", module + ".glsl")
+        text = read(path)
+        end = text.rindex("#endif")
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(text[:end] + line + "\n" + text[end:])
+        rc, out = run([args.cmake, f"-DMODULE_DIR={os.path.join(copy, 'module')}",
+                       f"-DOUTPUT_DIR={os.path.join(copy, 'hlsl')}", "-P", args.generator], expect_ok=False)
+        if rc == 0 or rule not in " ".join(out.split()):
+            fail(f"the generator did not refuse `{line}` in {module}.glsl with '{rule}' (exit {rc}):\n{out}")
+    return len(GENERATOR_MUTANTS)
+
+
+# The application's own descriptors (tests/hlsl/modules/app.hlsl and its passes).
+APP_DESCRIPTORS = {"app_budget", "AppFrame", "app_history_a", "app_previous_a", "app_history_b", "app_previous_b",
+                   "app_plan", "app_taken", "app_material", "app_tracked"}
+
+
+def narrowed_bool_vectors(listing):
+    """Where glslang's SPIR-V (-H listing) takes a component of a bool vector as a bool: an HLSL vector == or !=
+    where GLSL's would be one bool (glslang narrows it silently; DXC reads it otherwise)."""
+    types, found = {}, []
+    for line in listing.splitlines():
+        m = re.match(r"\s*(\d+):\s*\d+\((\w+)\)\s+(\w+)\s*(.*)$", line)
+        if not m:
+            continue
+        result, type_name, op, operands = m.groups()
+        types[result] = type_name
+        if op == "CompositeExtract" and type_name == "bool" and types.get(operands.split()[0], "").startswith("bvec"):
+            found.append(line.strip())
+    return found
+
+
+def check_gpu_modules_consumer(args):
+    os.makedirs(args.work, exist_ok=True)
+    # the narrowing check finds a narrowed compare
+    probe = os.path.join(args.work, "narrowing_probe.hlsl")
+    with open(probe, "w", encoding="utf-8") as f:
+        f.write("RWStructuredBuffer<int> o : register(u0);\n[numthreads(1, 1, 1)] void main(uint3 id : "
+                "SV_DispatchThreadID) { bool same = int2(id.xy) == int2(1, 2); o[0] = same ? 1 : 0; }\n")
+    rc, out = compile_hlsl(args, probe, [], listing=True)
+    if rc != 0 or not narrowed_bool_vectors(out):
+        fail(f"the narrowing check misses `bool same = int2(...) == int2(...)` (exit {rc}):\n{out[-2000:]}")
+
+    # the ports: the installed one (a quality target at K = 1) and budget mode at each K
+    ports = [("installed", os.path.dirname(os.path.abspath(args.module)), ["plan", "solve", "count", "update",
+                                                                           "update_next", "quality"])]
+    for k in (1, 2, 4):
+        folder = os.path.join(args.work, f"port_budget_k{k}")
+        run([args.cmake, f"-DGLSLANG={args.glslang}", f"-DSPIRV_CROSS={args.spirv_cross}",
+             f"-DPORT_GLSL={args.port_glsl}", f"-DKERNEL={args.port_kernel}", f"-DWORK={folder}/work",
+             f"-DOUTPUT={folder}/emcv_port_reference.hlsl", f"-DMODULE={folder}/emcv_port.hlsl",
+             f"-DTUNABLES=EMCV_HISTORY_SPP_BUDGET=8.0f;EMCV_HISTORY_BLOCK={k}", "-P", args.port_script])
+        ports.append((f"budget K={k}", folder, ["plan", "solve", "count", "update", "update_next"]))
+    count = 0
+    for port_name, port_dir, passes in ports:
+        for method in ("CV", "SPVG", "NOTEX"):
+            for name in passes:
+                defines = [f"EMCV_ADAPTIVE_{method}=1"]
+                if name == "update_next":
+                    defines.append("EMCV_ADAPTIVE_PLAN_NEXT=1")
+                source = os.path.join(args.consumer_dir, name.replace("_next", "") + ".comp.hlsl")
+                port_tag = port_name.replace(" ", "_").replace("=", "")
+                spv = os.path.join(args.work, f"{name}_{method.lower()}_{port_tag}.spv")
+                what = f"{name} for EMCV_ADAPTIVE_{method} on the {port_name} port"
+                rc, out = compile_hlsl(args, source, [port_dir, args.modules_dir], defines, spv, listing=True)
+                if rc != 0:
+                    fail(f"{what} does not compile (exit {rc}):\n{out[-4000:]}")
+                narrowed = narrowed_bool_vectors(out)
+                if narrowed:
+                    fail(f"{what}: a bool vector read as a bool (a vector == or != in a module?): {narrowed[:3]}")
+                reflection, _ = reflect_types(args.spirv_cross, spv)
+                names = {r["name"] for kind in ("ssbos", "ubos", "images", "separate_images", "textures")
+                         for r in reflection.get(kind, [])}
+                if not names <= APP_DESCRIPTORS:
+                    fail(f"{what}: descriptors {sorted(names - APP_DESCRIPTORS)} are not the application's own")
+                if port_name.startswith("budget") and name in ("plan", "solve", "count") and "app_budget" not in names:
+                    fail(f"{what} does not use the budget block: budget mode is not on ({sorted(names)})")
+                count += 1
+    print(f"hlsl gpu modules consumer: OK ({count} passes compiled: 3 methods, the installed port and budget mode "
+          f"at K = 1, 2, 4; the application's descriptors only, no narrowed bool vector)")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("check", choices=["module", "consumer", "layout"])
-    for option in ("module", "port-glsl", "consumer", "host-layout", "glslang", "spirv-cross", "work"):
+    parser.add_argument("check", choices=["module", "consumer", "layout", "gpu-modules", "gpu-modules-consumer"])
+    for option in ("module", "port-glsl", "consumer", "host-layout", "glslang", "spirv-cross", "work", "modules-dir",
+                   "source-modules", "generator", "cmake", "port-kernel", "port-script", "consumer-dir"):
         parser.add_argument("--" + option)
     args = parser.parse_args()
     for tool in (args.glslang, args.spirv_cross):
@@ -346,7 +589,8 @@ def main():
             sys.exit(77)
     if not args.module or not os.path.exists(args.module):
         fail(f"no module {args.module} (built by the emcv_shader_files target)")
-    {"module": check_module, "consumer": check_consumer, "layout": check_layout}[args.check](args)
+    {"module": check_module, "consumer": check_consumer, "layout": check_layout, "gpu-modules": check_gpu_modules,
+     "gpu-modules-consumer": check_gpu_modules_consumer}[args.check](args)
 
 
 if __name__ == "__main__":

@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: MIT
-// An engine's side of emcv's installed GPU modules (<prefix>/share/emcv/module), as docs/integration.md's "Budget
-// mode on the GPU" lays it out: its own bindings, its budget block (EMCV_APP_BUDGET) and the emcv_app_* functions
-// over its own images. The scene is a still camera over one flat surface: the previous position of a pixel is the
-// pixel, the surface test always passes where the material matches. The includer puts `#version 450 core`, the
-// method's define (EMCV_ADAPTIVE_CV, _SPVG or _NOTEX) and EMCV_HISTORY_SPP_BUDGET before this file.
+// An engine's side of emcv's installed GPU modules (<prefix>/share/emcv/module): its own bindings, budget block
+// (EMCV_APP_BUDGET) and emcv_app_* functions. A still camera over one flat surface: a pixel's previous position is
+// the pixel, the surface test passes where the material matches. The includer puts `#version 450 core`, the
+// method's define (EMCV_ADAPTIVE_CV, _SPVG or _NOTEX) and EMCV_HISTORY_SPP_BUDGET first.
 #include "emcv/port/history.h"
 
 layout(std430, binding = 0) buffer AppBudget { EmcvBudgetBlock app_budget; };

@@ -1,13 +1,16 @@
 # cmake -DGLSLANG=<glslangValidator> -DSPIRV_CROSS=<spirv-cross> -DSHARE_DIR=<prefix>/share/emcv
 #       -DINCLUDE_ROOT=<prefix>/include -DSOURCE_MODULES=<emcv source>/shaders/module -DPASSES=<this folder>
-#       -DWORK=<dir> -P compile_modules.cmake
+#       [-DHLSL_PASSES=<emcv source>/tests/hlsl/modules] -DWORK=<dir> -P compile_modules.cmake
 # The installed GPU modules as an engine on another API takes them:
 #  1. the installed modules are the source tree's, file for file, and declare no resource (no `uniform`,
 #     `buffer` or `layout(` outside comments: the application's bindings only);
 #  2. budget_consumer's four passes, for each method (EMCV_ADAPTIVE_CV, _SPVG, _NOTEX) and grain
 #     (EMCV_HISTORY_BLOCK 1, 2, 4), compile to OpenGL and Vulkan SPIR-V with glslang's include directive
 #     (-I <prefix>/share/emcv -I <prefix>/include), and spirv-cross turns the Vulkan SPIR-V into HLSL (shader
-#     model 5.1).
+#     model 5.1);
+#  3. with HLSL_PASSES: the installed HLSL modules (share/emcv/module/hlsl, one per GLSL module and the language
+#     file) take an HLSL engine's passes (tests/hlsl/modules) for each method, with the installed emcv_port.hlsl
+#     and -I <prefix>/share/emcv/module/hlsl only, through glslang's HLSL front end.
 cmake_minimum_required(VERSION 3.21)
 include("${CMAKE_CURRENT_LIST_DIR}/../script_support.cmake")
 emcv_require_vars(compile_modules.cmake GLSLANG SPIRV_CROSS SHARE_DIR INCLUDE_ROOT SOURCE_MODULES PASSES WORK)
@@ -51,4 +54,30 @@ foreach(method CV SPVG NOTEX)
     endforeach()
   endforeach()
 endforeach()
-message(STATUS "gpu modules: OK (${installed_modules} without resources; ${count} passes compiled for OpenGL and Vulkan SPIR-V and translated to HLSL)")
+# 3. the HLSL modules, installed, as an HLSL engine includes them
+set(hlsl_note "")
+set(hlsl_count 0)
+if(DEFINED HLSL_PASSES)
+  set(hlsl_dir "${SHARE_DIR}/module/hlsl")
+  file(GLOB hlsl_modules RELATIVE "${hlsl_dir}" "${hlsl_dir}/*.hlsl")
+  list(SORT hlsl_modules)
+  set(expected emcv_adaptive_language.hlsl)
+  foreach(m IN LISTS source_modules)
+    string(REGEX REPLACE "\\.glsl$" ".hlsl" m "${m}")
+    list(APPEND expected "${m}")
+  endforeach()
+  list(REMOVE_DUPLICATES expected)
+  list(SORT expected)
+  if(NOT hlsl_modules STREQUAL expected)
+    message(FATAL_ERROR "installed HLSL modules (${hlsl_modules}) are not the GLSL modules' (${expected})")
+  endif()
+  foreach(method CV SPVG NOTEX)
+    foreach(pass plan solve count update quality)
+      run("${pass}_${method}, HLSL" "${GLSLANG}" -D -V -e main -S comp "-DEMCV_ADAPTIVE_${method}=1" "-I${SHARE_DIR}"
+          "-I${hlsl_dir}" "${HLSL_PASSES}/${pass}.comp.hlsl" -o "${WORK}/${pass}_${method}.hlsl.spv")
+      math(EXPR hlsl_count "${hlsl_count} + 1")
+    endforeach()
+  endforeach()
+  set(hlsl_note "; ${hlsl_count} HLSL passes compiled from the installed module/hlsl")
+endif()
+message(STATUS "gpu modules: OK (${installed_modules} without resources; ${count} passes compiled for OpenGL and Vulkan SPIR-V and translated to HLSL${hlsl_note})")
