@@ -43,6 +43,7 @@ if(EMCV_GLSLANG_VALIDATOR AND EMCV_SPIRV_CROSS)
             "-DMODULE=${EMCV_PORT_HLSL_MODULE}"
             -P "${PROJECT_SOURCE_DIR}/cmake/emcv_port_hlsl.cmake"
     DEPENDS "${EMCV_PORT_GLSL_FILE}" "${_kernel}" "${PROJECT_SOURCE_DIR}/cmake/emcv_port_hlsl.cmake"
+            "${PROJECT_SOURCE_DIR}/cmake/EmcvTextLines.cmake"
     COMMENT "Translating the port into share/emcv/emcv_port.hlsl and emcv_port_reference.hlsl"
     VERBATIM)
   list(APPEND _emcv_shader_outputs "${EMCV_PORT_HLSL_FILE}" "${EMCV_PORT_HLSL_MODULE}")
@@ -62,6 +63,7 @@ if(EMCV_GLSLANG_VALIDATOR AND EMCV_SPIRV_CROSS)
     COMMAND "${CMAKE_COMMAND}" "-DMODULE_DIR=${_module_dir}" "-DOUTPUT_DIR=${EMCV_MODULE_HLSL_DIR}"
             -P "${PROJECT_SOURCE_DIR}/cmake/emcv_module_hlsl.cmake"
     DEPENDS ${_emcv_modules} "${_language}" "${PROJECT_SOURCE_DIR}/cmake/emcv_module_hlsl.cmake"
+            "${PROJECT_SOURCE_DIR}/cmake/EmcvTextLines.cmake"
     COMMENT "Writing the GPU modules for HLSL into share/emcv/module/hlsl"
     VERBATIM)
   list(APPEND _emcv_shader_outputs ${EMCV_MODULE_HLSL_FILES})

@@ -16,6 +16,7 @@
 # wanted); DXC does not, or reads them otherwise. tests/hlsl/check_hlsl.py (hlsl.gpu_modules) runs this script on
 # modules with each of them and expects the failure.
 cmake_minimum_required(VERSION 3.21)
+include("${CMAKE_CURRENT_LIST_DIR}/EmcvTextLines.cmake")
 foreach(var MODULE_DIR OUTPUT_DIR)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "emcv_module_hlsl.cmake: -D${var}=... is required")
@@ -77,18 +78,13 @@ foreach(path IN LISTS MODULES)
   check("\\.length[ \t]*\\(" "no .length() (GLSL only)")
 
   # top-level declarations, line by line at brace depth 0 (CMake lists: park ; [ and ])
-  string(REPLACE ";" "@S@" parked "${code}")
-  string(REPLACE "[" "@L@" parked "${parked}")
-  string(REPLACE "]" "@R@" parked "${parked}")
-  string(REPLACE "\n" ";" lines "${parked}")
+  emcv_text_lines("${code}" lines)
   set(depth 0)
   set(word "[A-Za-z_][A-Za-z0-9_]*")
-  set(declaration "^(${word}[ \t]+)?${word}[ \t]+${word}[ \t]*(=|@S@|@L@)")  # [qualifier] type name =|;|[
+  set(declaration "^(${word}[ \t]+)?${word}[ \t]+${word}[ \t]*(=|@EMCV_SEMICOLON@|@EMCV_LBRACKET@)")  # [qualifier] type name =|;|[
   foreach(line IN LISTS lines)
     if(depth EQUAL 0 AND line MATCHES "${declaration}")
-      string(REPLACE "@S@" ";" line "${line}")  # as the module wrote it, for the messages
-      string(REPLACE "@L@" "[" line "${line}")
-      string(REPLACE "@R@" "]" line "${line}")
+      emcv_unpark_text("${line}" line)  # as the module wrote it, for the messages
       if(line MATCHES "^const[ \t]")
         refuse("${path}" "a global constant is a #define (HLSL's needs `static const`)" "'${line}'")
       elseif(NOT line MATCHES "^(shared|EMCV_STATIC)[ \t]")
@@ -105,10 +101,7 @@ foreach(path IN LISTS MODULES)
   endforeach()
 
   # the #include lines, one for one
-  string(REPLACE ";" "@S@" parked "${text}")
-  string(REPLACE "[" "@L@" parked "${parked}")
-  string(REPLACE "]" "@R@" parked "${parked}")
-  string(REPLACE "\n" ";" lines "${parked}")
+  emcv_text_lines("${text}" lines)
   set(out "")
   set(first TRUE)
   foreach(line IN LISTS lines)
@@ -140,9 +133,7 @@ foreach(path IN LISTS MODULES)
     string(APPEND out "${line}\n")
   endforeach()
   string(REGEX REPLACE "\n$" "" out "${out}")  # the file's own last newline came back as an empty last line
-  string(REPLACE "@S@" ";" out "${out}")
-  string(REPLACE "@L@" "[" out "${out}")
-  string(REPLACE "@R@" "]" out "${out}")
+  emcv_unpark_text("${out}" out)
   file(WRITE "${OUTPUT_DIR}/${name}.hlsl.tmp" "${out}")
   file(COPY_FILE "${OUTPUT_DIR}/${name}.hlsl.tmp" "${OUTPUT_DIR}/${name}.hlsl" ONLY_IF_DIFFERENT)
   file(REMOVE "${OUTPUT_DIR}/${name}.hlsl.tmp")

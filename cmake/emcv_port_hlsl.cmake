@@ -15,6 +15,7 @@
 # translated code, so the tunables are baked at these values (the defaults otherwise) and the module's header says
 # which; an engine that #defines one of them before the #include gets an #error instead of a silent mismatch.
 cmake_minimum_required(VERSION 3.21)
+include("${CMAKE_CURRENT_LIST_DIR}/EmcvTextLines.cmake")
 foreach(var GLSLANG SPIRV_CROSS PORT_GLSL KERNEL WORK OUTPUT)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "emcv_port_hlsl.cmake: -D${var}=... is required")
@@ -67,10 +68,7 @@ endif()
 
 # ---- the module: the translation's top-level items, sorted into kept and dropped ----
 # one list item per line: park the characters that CMake lists treat specially
-string(REPLACE ";" "@EMCV_SEMICOLON@" text "${hlsl}")
-string(REPLACE "[" "@EMCV_LBRACKET@" text "${text}")
-string(REPLACE "]" "@EMCV_RBRACKET@" text "${text}")
-string(REPLACE "\n" ";" lines "${text}")
+emcv_text_lines("${hlsl}" lines)
 set(kept "")
 set(dropped_names "")
 set(item "")
@@ -117,9 +115,7 @@ foreach(line IN LISTS lines)
          head MATCHES "^static const [A-Za-z0-9_]+ (spv|_)[A-Za-z0-9_]*")
     string(APPEND kept "${item}\n")  # spirv-cross's helper functions and the port's constant tables
   else()
-    string(REPLACE "@EMCV_SEMICOLON@" ";" item "${item}")
-    string(REPLACE "@EMCV_LBRACKET@" "[" item "${item}")
-    string(REPLACE "@EMCV_RBRACKET@" "]" item "${item}")
+    emcv_unpark_text("${item}" item)
     message(FATAL_ERROR "emcv_port_hlsl.cmake: spirv-cross wrote an item the module does not know how to sort "
                         "(keep it or drop it, cmake/emcv_port_hlsl.cmake):\n${item}")
   endif()
@@ -128,9 +124,7 @@ endforeach()
 if(NOT item STREQUAL "" OR NOT depth EQUAL 0)
   message(FATAL_ERROR "emcv_port_hlsl.cmake: unbalanced braces at the end of spirv-cross's output")
 endif()
-string(REPLACE "@EMCV_SEMICOLON@" ";" kept "${kept}")
-string(REPLACE "@EMCV_LBRACKET@" "[" kept "${kept}")
-string(REPLACE "@EMCV_RBRACKET@" "]" kept "${kept}")
+emcv_unpark_text("${kept}" kept)
 foreach(name IN LISTS dropped_names ITEMS stage_input comp_main)
   if(kept MATCHES "[^A-Za-z0-9_.]${name}[^A-Za-z0-9_]")  # not a struct member of that name
     message(FATAL_ERROR "emcv_port_hlsl.cmake: a function kept for the module uses the kernel's '${name}'")

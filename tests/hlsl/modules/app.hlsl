@@ -52,3 +52,11 @@ bool app_sub_pixel(int2 p) { return p.x == int(app_frame.z) - 1; }
 
 /// Pixel p's material id, 0 off screen.
 uint app_code(int2 p) { return emcv_adaptive_on_screen(p) ? app_material.Load(int3(p, 0)) : 0u; }
+
+/// Shares pixel p's material code (returned) and sub-pixel test with its tile (emcv_adaptive_share_pixel), as the
+/// planning passes do before emcv_adaptive_tile_sigma2 / emcv_adaptive_quality_count.
+uint app_share_pixel(int2 p, uint group_index) {
+    uint code = app_code(p);
+    emcv_adaptive_share_pixel(group_index, code, code != 0u && app_sub_pixel(p));
+    return code;
+}

@@ -8,8 +8,7 @@ void main(uint3 id : SV_DispatchThreadID, uint3 group_thread_id : SV_GroupThread
 {
     emcv_hlsl_set_invocation(group_thread_id, group_index);
     int2 p = int2(id.xy);
-    uint code = app_code(p);
-    emcv_adaptive_share_pixel(group_index, code, code != 0u && app_sub_pixel(p));
+    app_share_pixel(p, group_index);
     EmcvAdaptiveBlock blk;
     float own, frames;
     emcv_adaptive_tile_sigma2(emcv_adaptive_tile_origin(p), blk, own, frames);

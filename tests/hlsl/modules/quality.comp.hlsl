@@ -8,8 +8,7 @@ void main(uint3 id : SV_DispatchThreadID, uint3 group_thread_id : SV_GroupThread
 {
     emcv_hlsl_set_invocation(group_thread_id, group_index);
     int2 p = int2(id.xy);
-    uint code = app_code(p);
-    emcv_adaptive_share_pixel(group_index, code, code != 0u && app_sub_pixel(p));
+    uint code = app_share_pixel(p, group_index);
     uint n = emcv_adaptive_quality_count(emcv_adaptive_tile_origin(p));
     if (code != 0u) app_taken[p] = n;
 }
