@@ -125,7 +125,7 @@ set(_banner "// SPDX-License-Identifier: MIT
 // No #version, #include, #extension or #line: put it after your shader's `#version 450` (core) line and
 // your own #defines of the tunables (EMCV_HISTORY_*, history.h), before your code. The same text compiles for
 // OpenGL 4.5 and, through glslang (which defines VULKAN), for Vulkan (EMCV_LAYOUT_BINDING: set 0,
-// EMCV_LAYOUT_IMAGE_BINDING: set 1). docs/integration.md, step 3.
+// EMCV_LAYOUT_IMAGE_BINDING: set 1). docs/integration.md, section 4.
 ")
 # Written only when it changes, so that what depends on it rebuilds only then.
 set(_tmp "${OUTPUT}.tmp")

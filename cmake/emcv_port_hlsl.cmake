@@ -58,7 +58,7 @@ file(WRITE "${OUTPUT}.tmp" "// SPDX-License-Identifier: MIT
 // the port's structs and functions (as in emcv_port.hlsl) and an entry point `main` that shows the bindings:
 // Vulkan set 0 (buffers, the uniform block, the texture) in space0 and set 1 (images) in space1, binding b ->
 // register (u|t|b|s)b. Storage buffers are (RW)ByteAddressBuffers, as spirv-cross writes them, read at the
-// std430 offsets of emcv/port/host.hpp. docs/integration.md, step 3.
+// std430 offsets of emcv/port/host.hpp. docs/integration.md, section 4.
 ${hlsl}")
 file(COPY_FILE "${OUTPUT}.tmp" "${OUTPUT}" ONLY_IF_DIFFERENT)
 file(REMOVE "${OUTPUT}.tmp")

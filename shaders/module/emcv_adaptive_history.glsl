@@ -7,7 +7,7 @@
 //
 // It declares no resources: the application defines the emcv_app_* functions declared below (anywhere in the
 // shader; they are prototypes here) over its own images, and must have its own bindings. The renderer's
-// definitions are shaders/adaptive/history_io.h; docs/integration.md, "Budget mode on the GPU", lists the order.
+// definitions are shaders/adaptive/history_io.h; docs/integration.md, section 3, lists the order.
 #ifndef EMCV_ADAPTIVE_HISTORY_H
 #define EMCV_ADAPTIVE_HISTORY_H
 

@@ -10,7 +10,7 @@
 // USAGE GLSL #include "emcv/port/ema.h" through demo/gl's shader preprocessor (include root: include/);
 //            the preprocessor drops the C++-only `#include <...>` lines, GLSL never defines __cplusplus.
 //            Without an include resolver: the installed share/emcv/emcv_port.glsl, every header in one file
-//            (docs/integration.md, step 3).
+//            (docs/integration.md, section 4).
 // OPTIONS    EMCV_FN ........ function linkage          (C++ `inline`, GLSL empty)
 //            EMCV_IN(T) ..... input parameter           (C++ `T const&`, GLSL `in T`)
 //            EMCV_INOUT(T) .. in/out parameter          (C++ `T&`, GLSL `inout T`)
