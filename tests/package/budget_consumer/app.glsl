@@ -43,8 +43,8 @@ vec3 emcv_app_previous_normal(ivec2 q) { return vec3(0.0f, 0.0f, 1.0f); }
 void emcv_app_store_plan(ivec2 t, uint v) { imageStore(app_plan, t, uvec4(v)); }
 uint emcv_app_load_plan(ivec2 t) { return imageLoad(app_plan, t).x; }
 
-/// Whether pixel p's kernel is under a pixel (there cv takes no samples): the last column, in this test.
-bool app_sub_pixel(ivec2 p) { return p.x == int(app_frame.z) - 1; }
+/// Whether p's kernel is under a pixel (the layout's test, at 1 pixel/mm): the last column's widest d is 0.01 mm.
+bool app_sub_pixel(ivec2 p) { return emcv_adaptive_sub_pixel_kernel(p.x == int(app_frame.z) - 1 ? 0.01f : 1.0f, 1.0f); }
 
 /// Pixel p's material id, 0 off screen.
 uint app_code(ivec2 p) { return emcv_adaptive_on_screen(p) ? texelFetch(app_material, p, 0).x : 0u; }
