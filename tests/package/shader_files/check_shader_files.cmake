@@ -10,7 +10,10 @@
 #     sets and bindings of the GLSL it was translated from;
 #  4. every function of emcv_port.glsl is a function of the HLSL, and the HLSL files (emcv_port_reference.hlsl
 #     and the module emcv_port.hlsl, whose use tests/hlsl checks) are the translation of the source tree's port
-#     and reference kernel (not stale).
+#     and reference kernel (not stale);
+#  5. the installed translation kit (share/emcv/hlsl-port) makes emcv_port.hlsl again from the installed
+#     emcv_port.glsl with other tunables (a budget of 8 at K = 2): its header states them, each is #defined at
+#     that value, and its reference kernel compiles with glslang's HLSL front end.
 cmake_minimum_required(VERSION 3.21)
 include("${CMAKE_CURRENT_LIST_DIR}/../script_support.cmake")
 emcv_require_vars(check_shader_files.cmake SHADER_DIR SOURCE_DIR GLSLANG SPIRV_CROSS WORK)
@@ -136,4 +139,23 @@ foreach(name emcv_port_reference.hlsl emcv_port.hlsl)
                         "kernel (rebuild emcv, then install; compare with ${WORK}/${name})")
   endif()
 endforeach()
-message(STATUS "shader files: OK (${function_count} functions, ${resource_count} registers: ${seen})")
+
+# 5. the installed kit, with other tunables (a quoted literal: execute_process keeps it one argument)
+set(kit "${SHADER_DIR}/hlsl-port")
+execute_process(COMMAND "${CMAKE_COMMAND}" "-DGLSLANG=${GLSLANG}" "-DSPIRV_CROSS=${SPIRV_CROSS}"
+                        "-DPORT_GLSL=${glsl_file}" "-DKERNEL=${kit}/port_reference.glsl" "-DWORK=${WORK}/kit"
+                        "-DOUTPUT=${WORK}/kit/emcv_port_reference.hlsl" "-DMODULE=${WORK}/kit/emcv_port.hlsl"
+                        "-DTUNABLES=EMCV_HISTORY_SPP_BUDGET=8.0f;EMCV_HISTORY_BLOCK=2" -P "${kit}/emcv_port_hlsl.cmake"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "the installed kit ${kit} failed (exit ${rc}):\n${out}${err}")
+endif()
+file(READ "${WORK}/kit/emcv_port.hlsl" kit_module)
+foreach(pair "EMCV_HISTORY_SPP_BUDGET 8.0f" "EMCV_HISTORY_BLOCK 2")
+  if(NOT kit_module MATCHES "\n//   ${pair}\n" OR NOT kit_module MATCHES "\n#define ${pair}\n")
+    message(FATAL_ERROR "${WORK}/kit/emcv_port.hlsl does not state and #define ${pair}")
+  endif()
+endforeach()
+run("the kit's emcv_port_reference.hlsl, glslang HLSL front end" "${GLSLANG}" -D -e main -S comp -V
+    "${WORK}/kit/emcv_port_reference.hlsl" -o "${WORK}/kit.spv")
+message(STATUS "shader files: OK (${function_count} functions, ${resource_count} registers: ${seen}; the kit)")
