@@ -1,6 +1,8 @@
 # cmake -DGLSLANG=<glslangValidator> -DSPIRV_CROSS=<spirv-cross> -DPORT_GLSL=<emcv_port.glsl>
 #       -DKERNEL=<shaders/reference/port_reference.glsl> -DWORK=<dir> -DOUTPUT=<emcv_port_reference.hlsl>
 #       [-DMODULE=<emcv_port.hlsl>] [-DSHADER_MODEL=51] [-DTUNABLES=NAME=VALUE;...] -P emcv_port_hlsl.cmake
+# Installed with its helper and kernel as <prefix>/share/emcv/hlsl-port/ (PORT_GLSL: <prefix>/share/emcv/emcv_port.glsl,
+# KERNEL: hlsl-port/port_reference.glsl), so that an engine makes emcv_port.hlsl again with its own TUNABLES.
 # The HLSL deliverables, from one translation: `#version 450 core` + the flattened port + the reference kernel,
 # compiled to Vulkan SPIR-V by glslang and translated by spirv-cross for shader model 5.1.
 #  OUTPUT  the reference kernel as spirv-cross writes it, with an entry point `main` and its resources: each
