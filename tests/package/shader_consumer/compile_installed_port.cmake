@@ -12,16 +12,7 @@ file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
 
 # 1. the installed port is the source tree's port, header for header
-file(GLOB source_headers RELATIVE "${SOURCE_PORT}" "${SOURCE_PORT}/*.h")
-file(GLOB installed_headers RELATIVE "${INCLUDE_ROOT}/emcv/port" "${INCLUDE_ROOT}/emcv/port/*.h")
-list(SORT source_headers)
-list(SORT installed_headers)
-if(source_headers STREQUAL "")
-  message(FATAL_ERROR "no port header under ${SOURCE_PORT}")
-endif()
-if(NOT source_headers STREQUAL installed_headers)
-  message(FATAL_ERROR "installed port headers (${installed_headers}) differ from the source tree's (${source_headers})")
-endif()
+emcv_require_same_files("port headers" "${SOURCE_PORT}" "${INCLUDE_ROOT}/emcv/port" "*.h" installed_headers)
 
 # 2. every installed header, included twice (include guards), for both targets
 set(all "${WORK}/all_port_headers.comp.glsl")
