@@ -14,7 +14,8 @@ name the command, the commit and the GL renderer). The list's order, and so each
   1. lights      per scene (the quality scenes, then the variations): the lights per frame (emcv-eval, diffuse)
   2. quality     per quality scene x group x seed: emcv-demo against the reference, raw and resolved (--resolve
                  taa). Groups: "fixed" (diffuse, separable-11/17/25), then "B4", "B8", "B16", "B32" (burley-B,
-                 spvg, cv, cv-notex with --spp-budget B: every method spends B samples per SSS pixel)
+                 spvg, cv, cv-notex with --spp-budget B: every method spends B samples per SSS pixel), then "B64"
+                 (burley-64 alone: the equal-time comparison's reach, REACH_BUDGETS)
   3. variations  per scene file of demo/scenes/variations/, then of demo/scenes/validation/, x B in 8, 16
                  (burley-B, spvg, cv, cv-notex; with separable-17 and diffuse at B = 8), first seed
   4. teaser      per seed: light-off in quality mode (the default target variance), the paper's teaser methods
@@ -69,6 +70,9 @@ QUALITY_SCENES = ["static", "light-off", "flicker", "club", "moving"]
 # switch; flicker past its last burst (41-42) by 29 frames; club over two periods of its slowest light (30).
 QUALITY_FRAMES = {"static": 60, "light-off": 60, "flicker": 72, "club": 60, "moving": 60}
 BUDGETS = [4, 8, 16, 32]
+# burley-N beyond the largest B, run alone (quality and cost): an adaptive method at B = 16 or 32 takes more SSS time
+# than burley-32, and the equal-time comparison interpolates between burley runs, never past the slowest.
+REACH_BUDGETS = [64]
 VARIATION_BUDGETS = [8, 16]
 STORY_BUDGET = 8  # the budget of the switch story, the per-frame plots and the banding crop
 SEPARABLE = ["separable-11", "separable-17", "separable-25"]
@@ -184,7 +188,7 @@ def group_methods(group):
     if group == "fixed":
         return ["diffuse"] + SEPARABLE
     b = int(group[1:])
-    return [f"burley-{b}"] + ADAPTIVE
+    return [f"burley-{b}"] + ([] if b in REACH_BUDGETS else ADAPTIVE)
 
 
 def scene_name(scene):
@@ -201,7 +205,7 @@ class Config:
             self.variation_budgets = [STORY_BUDGET]
         else:
             self.scenes = QUALITY_SCENES
-            self.groups = ["fixed"] + [f"B{b}" for b in BUDGETS]
+            self.groups = ["fixed"] + [f"B{b}" for b in BUDGETS + REACH_BUDGETS]
             # The variations of light-off, then the validation scenes (docs/scenes.md): nothing was tuned on either.
             self.variations = [os.path.relpath(os.path.join(ROOT, "demo", "scenes", folder, f), ROOT)
                                for folder in ("variations", "validation")
@@ -543,7 +547,7 @@ def equal_samples_table(d):
              "|---|---:|---|---:|---:|---:|---|---:|---:|---:|"]
     for scene in d.scenes:
         for group in d.groups:
-            if group == "fixed":
+            if group == "fixed" or int(group[1:]) in REACH_BUDGETS:  # burley alone: nothing to compare
                 continue
             cells = []
             for column in ("psnr_db", "psnr_resolved_db"):
@@ -763,7 +767,7 @@ def equal_time_table(d, ms):
     lines = ["| scene | SSS ms (burley-B's) | raw: best (dB) | over next | over burley | resolved: best (dB) | "
              "over next | over burley | in range |", "|---|---|---|---:|---:|---|---:|---:|---|"]
     for scene in d.scenes:
-        for b in BUDGETS:
+        for b in BUDGETS + REACH_BUDGETS:
             t = ms.get((scene, f"B{b}", f"burley-{b}"))
             if t is None or not math.isfinite(t):
                 continue
