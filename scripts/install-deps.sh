@@ -17,7 +17,7 @@ packages=(
   glslang-tools spirv-cross                # offline GLSL validation; share/emcv/emcv_port_reference.hlsl; SPIR-V to HLSL/MSL and reflection (tests)
   doxygen                                  # API reference (scripts/docs.sh, ctest -L docs)
   xvfb xauth                               # xvfb-run: the emcv-demo --window test
-  python3 python3-matplotlib python3-numpy # plots in docs/
+  python3 python3-matplotlib python3-numpy python3-pil # plots in docs/ (Pillow: palette-encoded PNGs)
   python3-jsonschema                       # tests/scene: the scene schema against the built-in scenes
   python3-dev python3-pybind11 python3-pytest   # the Python module emcv (docs/python.md) and its tests
 )

@@ -182,6 +182,31 @@ double psnr_at_log_time(double t, double t1, double p1, double t2, double p2) {
     return p1 + (p2 - p1) * std::log(t / t1) / std::log(t2 / t1);
 }
 
+/// What an image of PSNR `db` is worth in burley samples: the N of the burley runs' line through the two that bracket
+/// it in PSNR, ln N linear in dB (N_1 (N_2 / N_1)^((db - p_1) / (p_2 - p_1))), as "burley-20.2"; outside the runs
+/// "more than burley-64" or "less than burley-4", not an extrapolation. `psnr_of` picks the raw or resolved PSNR.
+template <class PsnrOf>
+std::string worth_text(std::vector<burley_point> curve, double db, PsnrOf psnr_of) {
+    curve.erase(std::remove_if(curve.begin(), curve.end(),
+                               [&](const burley_point& b) { return !psnr_of(b) || !burley_samples(b.method); }),
+                curve.end());
+    if (curve.empty()) return "n/a";
+    std::sort(curve.begin(), curve.end(),
+              [&](const burley_point& a, const burley_point& b) { return *psnr_of(a) < *psnr_of(b); });
+    if (db > *psnr_of(curve.back())) return "more than " + curve.back().method;
+    if (db < *psnr_of(curve.front())) return "less than " + curve.front().method;
+    std::size_t upper = 0;
+    while (upper + 1 < curve.size() && *psnr_of(curve[upper]) < db) ++upper;
+    const burley_point& above = curve[upper];
+    const burley_point& below = curve[upper == 0 ? 0 : upper - 1];
+    const double n1 = *burley_samples(below.method), n2 = *burley_samples(above.method);
+    const double p1 = *psnr_of(below), p2 = *psnr_of(above);
+    const double n = p2 == p1 ? n1 : n1 * std::pow(n2 / n1, (db - p1) / (p2 - p1));
+    char t[48];
+    std::snprintf(t, sizeof t, "burley-%.1f", n);
+    return t;
+}
+
 }  // namespace
 
 std::optional<std::string> compare_after_change(const std::vector<metrics_row>& rows, int first_change,
@@ -252,11 +277,19 @@ std::optional<std::string> compare_at_equal_time(const std::vector<metrics_row>&
                       span_text(first_change, cand.last_frame, window) + ": ";
     const std::string from_frame = warm_up_left_out ? ", from frame " + std::to_string(timing_from_frame) : "";
     // Outside the burley runs' times the curve is not known: say so rather than extrapolate.
+    // What the method's image is worth in burley samples (equal PSNR): quality alone, so it holds on any device; the
+    // method wins at equal time wherever its pass costs less than that many burley samples.
+    const std::optional<double> resolved_name = mean_psnr(cand.psnr_resolved);
+    std::string worth = "; its image is worth " +
+                        worth_text(curve, *db_name, [](const burley_point& b) { return std::optional<double>(b.psnr_db); });
+    if (resolved_name && std::isfinite(*resolved_name))
+        worth += " (resolved " +
+                 worth_text(curve, *resolved_name, [](const burley_point& b) { return b.psnr_resolved_db; }) + ")";
     const burley_point &fastest = curve.front(), &slowest = curve.back();
     if (t > slowest.sss_ms || t < fastest.sss_ms) {
         const burley_point& edge = t > slowest.sss_ms ? slowest : fastest;
         return out + name + "'s SSS time is " + (t > slowest.sss_ms ? "beyond " : "below ") + edge.method + "'s (" +
-               ms_text(t) + " against " + ms_text(edge.sss_ms) + from_frame + "): no equal-time comparison";
+               ms_text(t) + " against " + ms_text(edge.sss_ms) + from_frame + "): no equal-time comparison" + worth;
     }
     std::size_t upper = 1;
     while (upper < curve.size() && curve[upper].sss_ms < t) ++upper;
@@ -269,14 +302,13 @@ std::optional<std::string> compare_at_equal_time(const std::vector<metrics_row>&
                                    " (" + ms_text(above.sss_ms) + ")";
     out += ", PSNR " + gap_text(db_name, burley_db) + " (" + name + " " + psnr_text(db_name) + ", burley-N there " +
            psnr_text(burley_db) + ")";
-    const std::optional<double> resolved_name = mean_psnr(cand.psnr_resolved);
     if (resolved_name && below.psnr_resolved_db && above.psnr_resolved_db) {
         const double burley_resolved =
             psnr_at_log_time(t, below.sss_ms, *below.psnr_resolved_db, above.sss_ms, *above.psnr_resolved_db);
         out += ", resolved " + gap_text(resolved_name, burley_resolved) + " (" + name + " " +
                psnr_text(resolved_name) + ", burley-N there " + psnr_text(burley_resolved) + ")";
     }
-    return out;
+    return out + worth;
 }
 
 std::optional<std::string> compare_with_target(const std::vector<metrics_row>& rows, int first_change,

@@ -61,7 +61,10 @@ std::optional<std::string> compare_after_change(const std::vector<metrics_row>& 
 /// p(t) = p1 + (p2 - p1) ln(t / t1) / ln(t2 / t1). The line gives both runs, `name`'s time and the PSNR gap
 /// (name minus p(t)), then, when every run has it, the same gap of the resolved images. When t is beyond the
 /// slowest burley run's time or below the fastest's, the line says so in words ("cv's SSS time is beyond
-/// burley-32's ...: no equal-time comparison") instead of extrapolating. Empty when `name` did not run in the
+/// burley-32's ...: no equal-time comparison") instead of extrapolating. Either way the line ends with what
+/// `name`'s image is worth in burley samples ("; its image is worth burley-20.2 (resolved burley-18.3)"): the N of
+/// equal PSNR on the runs' line through the two that bracket it in PSNR, ln N linear in dB, or "more than
+/// burley-64" / "less than burley-4" outside them. That is quality alone, so it holds on any device. Empty when `name` did not run in the
 /// window, took no SSS time or has no finite PSNR, or when no burley-N run did.
 std::optional<std::string> compare_at_equal_time(const std::vector<metrics_row>& rows, int first_change,
                                                  const std::string& name, int window = switch_window_frames,

@@ -36,8 +36,9 @@ was made with another command (another size, frames or seeds). The tables of qua
 apart from those of time (jobs 6-9): the quality tables from --jobs 2 are byte-identical to those from --jobs 1,
 which --check-determinism verifies on the --quick list (64x64, two scenes, one seed). Every output is written to
 a temporary name and renamed. With the default raw directory (and not --quick) the GENERATED blocks of
-docs/results.md are rewritten and the plots and the long tables (pareto.md, pareto-time.md, variations.md,
-switch.md, scaling-resolution.md, scaling-radius.md, seed-spread.md) go to docs/results/; otherwise they go to RAW_DIR/out/.
+docs/results.md are rewritten and the plots and the long tables (pareto.md, pareto-time.md, worth.md,
+equal-time.md, variations.md, switch.md, scaling-resolution.md, scaling-radius.md, seed-spread.md) go to
+docs/results/; otherwise they go to RAW_DIR/out/.
 """
 import argparse
 import concurrent.futures
@@ -788,6 +789,53 @@ def equal_time_table(d, ms):
     return "\n".join(lines)
 
 
+def burley_samples_at(points, x):
+    """Burley's sample count at value x of a curve [(x_N, y_N, N)] over its runs, y linear in x between the two runs
+    that bracket x (PSNR: y = ln N, linear in dB; time: y = N, linear in ms, as a pass's time is affine in N);
+    (None, "> N_max") or (None, "< N_min") outside the runs: no extrapolation."""
+    pts = sorted(p for p in points if math.isfinite(p[0]))
+    if not pts or x is None or not math.isfinite(x):
+        return None, "n/a"
+    if x > pts[-1][0]:
+        return None, f"> {pts[-1][2]}"
+    if x < pts[0][0]:
+        return None, f"< {pts[0][2]}"
+    for (x0, y0, _), (x1, y1, _) in zip(pts, pts[1:]):
+        if x0 <= x <= x1:
+            return (y0 if x1 == x0 else y0 + (y1 - y0) * (x - x0) / (x1 - x0)), None
+    return pts[0][1], None
+
+
+def worth_table(d, ms, methods):
+    """Per scene, B and adaptive method: the burley-N its image is worth (the N of equal PSNR, raw and resolved,
+    interpolated in log N between the burley runs) beside the burley-N that its SSS time buys (the N of equal time).
+    The first is quality only, so it holds on any device: the method wins at equal time wherever its pass costs less
+    than that many samples of burley's."""
+    lines = ["| scene | B | method | worth burley-N, raw | resolved | its SSS time buys burley-N |",
+             "|---|---:|---|---:|---:|---:|"]
+
+    def cell(value, text):
+        return text if value is None else fmt(value, 1)
+
+    for scene in d.scenes:
+        runs = [b for b in BUDGETS + REACH_BUDGETS if f"B{b}" in d.groups]
+        burley = {c: [(d.window_mean(("quality", scene, f"B{b}", f"burley-{b}"), c, MEAN_FROM), math.log(b), b)
+                      for b in runs] for c in ("psnr_db", "psnr_resolved_db")}
+        times = [(ms[(scene, f"B{b}", f"burley-{b}")], b, b) for b in runs if (scene, f"B{b}", f"burley-{b}") in ms]
+        for b in BUDGETS:
+            for m in methods:
+                key = ("quality", scene, f"B{b}", m)
+                if key not in d.series:
+                    continue
+                cells = []
+                for c in ("psnr_db", "psnr_resolved_db"):
+                    log_n, text = burley_samples_at(burley[c], d.window_mean(key, c, MEAN_FROM))
+                    cells.append(cell(None if log_n is None else math.exp(log_n), text))
+                cells.append(cell(*burley_samples_at(times, ms.get((scene, f"B{b}", m)))))
+                lines.append(f"| {scene} | {b} | {m} | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
 def pareto_time_table(d, ms):
     """Per scene, setting and method: the SSS ms, its ratio to burley-B's, and for the adaptive methods the PSNR
     gap (raw, resolved; frames MEAN_FROM..) to the burley runs interpolated at the method's own SSS time."""
@@ -1114,6 +1162,8 @@ def assemble(jobs, raw_dir, c, out_dir, write_doc):
     if ms:
         blocks["equal-time"] = equal_time_table(d, ms)
         blocks["pareto-time"] = pareto_time_table(d, ms)
+        blocks["worth"] = worth_table(d, ms, ["cv"])
+        blocks["worth-methods"] = worth_table(d, ms, ADAPTIVE)
     if "switch" in stages:
         rows = stage_rows(d, "switch")
         plot_switch({s: [r for r in rows if r["scene"] == s] for s in ("light-off", "flicker", "club")}, out_dir,
@@ -1141,6 +1191,7 @@ def assemble(jobs, raw_dir, c, out_dir, write_doc):
                f"1/5/15 min at the end):\n\n" + "\n".join(f"- {r}" for r in runs))
     # The long tables go to files of their own beside the plots; docs/results.md holds the rest and links to them.
     for name, file in (("pareto-quality", "pareto.md"), ("pareto-time", "pareto-time.md"),
+                       ("worth-methods", "worth.md"), ("equal-time", "equal-time.md"),
                        ("variations-methods", "variations.md"), ("switch", "switch.md"),
                        ("scaling-resolution", "scaling-resolution.md"), ("scaling-radius", "scaling-radius.md"),
                        ("seed-spread", "seed-spread.md")):

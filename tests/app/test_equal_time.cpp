@@ -67,8 +67,13 @@ TEST_CASE("the equal-time line interpolates the burley runs' PSNR in log time at
     CHECK(line->find("cv vs burley-N at cv's SSS time, frames 30-59 (from the first light change at frame 30): "
                      "3.000 ms, between burley-8 (2.000 ms) and burley-32 (8.000 ms), "
                      "PSNR +2.25 dB (cv 44.00, burley-N there 41.75), "
-                     "resolved +1.12 dB (cv 52.00, burley-N there 50.88)") == 0);
-    CHECK(line->size() == line->find("50.88)") + 6);  // nothing after the resolved gap
+                     "resolved +1.12 dB (cv 52.00, burley-N there 50.88); "
+                     // What cv's image is worth: raw 44 dB between burley-8 (40) and burley-32 (46), ln N linear in
+                     // dB: N = 8 x (32 / 8)^((44 - 40) / (46 - 40)) = 8 x 4^(2/3) = 20.16 (linear in N: 24.0;
+                     // the runs swapped: 8 x 4^(1/3) = 12.7). Resolved 52 between 50 (burley-8) and 53 (burley-32):
+                     // the same 2/3, 20.16.
+                     "its image is worth burley-20.2 (resolved burley-20.2)") == 0);
+    CHECK(line->size() == line->find("(resolved burley-20.2)") + 22);  // nothing after it
 }
 
 TEST_CASE("the every-frame equal-time line takes its times from frame 1, as the table does", "[app][summary]") {
@@ -96,11 +101,25 @@ TEST_CASE("outside the burley runs' times the equal-time line says so instead of
     const std::optional<std::string> beyond = app::compare_at_equal_time(rows, change_frame, "cv");
     REQUIRE(beyond);
     CHECK(*beyond == "cv vs burley-N at cv's SSS time, frames 30-59 (from the first light change at frame 30): "
-                     "cv's SSS time is beyond burley-64's (20.000 ms against 16.000 ms): no equal-time comparison");
+                     "cv's SSS time is beyond burley-64's (20.000 ms against 16.000 ms): no equal-time comparison; "
+                     "its image is worth more than burley-64 (resolved more than burley-64)");
     const std::optional<std::string> below = app::compare_at_equal_time(rows, change_frame, "spvg");
     REQUIRE(below);
     CHECK(*below == "spvg vs burley-N at spvg's SSS time, frames 30-59 (from the first light change at frame 30): "
-                    "spvg's SSS time is below burley-4's (0.500 ms against 1.000 ms): no equal-time comparison");
+                    "spvg's SSS time is below burley-4's (0.500 ms against 1.000 ms): no equal-time comparison; "
+                    "its image is worth less than burley-4 (resolved less than burley-4)");
+}
+
+TEST_CASE("the equal-time line says what the method's image is worth in burley samples, raw and resolved",
+          "[app][summary]") {
+    std::vector<app::metrics_row> rows = burley_runs();
+    add_method(rows, "cv", 3.0, 43.0, 54.0);
+    const std::optional<std::string> line = app::compare_at_equal_time(rows, change_frame, "cv");
+    REQUIRE(line);
+    INFO(*line);
+    // Raw 43 dB halfway between burley-8 (40) and burley-32 (46): N = 8 x 4^(1/2) = 16.0. Resolved 54 dB halfway
+    // between burley-32 (53) and burley-64 (55): N = 32 x 2^(1/2) = 45.25 (linear in N: 48.0).
+    CHECK(line->find("; its image is worth burley-16.0 (resolved burley-45.3)") != std::string::npos);
 }
 
 TEST_CASE("no equal-time line without a burley run or without the method", "[app][summary]") {

@@ -4,7 +4,9 @@ log SSS time at its own SSS time), on data made up here (no renderer):
   - the pareto-time table's two new cells, raw and resolved, worked by hand in the comments;
   - "beyond range" past the slowest burley run and "below range" under the fastest, not an extrapolation;
   - "-" for the methods that are not adaptive;
-  - the Pareto plot's SSS-ms panel labels each adaptive point with the same gap where there is one.
+  - the Pareto plot's SSS-ms panel labels each adaptive point with the same gap where there is one;
+  - the worth table: the burley-N of equal PSNR (log N linear in dB between the burley runs that bracket it) and
+    the burley-N of equal SSS time (N linear in ms), worked by hand; outside the runs "> N" or "< N".
 
     /usr/bin/python3 tests/eval/test_run_eval_equal_time.py
 """
@@ -81,6 +83,23 @@ def main():
     for key in (("burley-8", "8"), ("separable-17", "-")):
         check(rows[key][5:7] == ["-", "-"], f"{key[0]} is not adaptive: no equal-time cells (got {rows[key]})")
     check(run_eval.equal_time_gap([], 3.0, 44.0) == (None, "n/a"), "no burley curve: n/a")
+
+    worth = {}
+    for line in run_eval.worth_table(d, ms, run_eval.ADAPTIVE).splitlines()[2:]:
+        cells = [c.strip() for c in line.strip("|").split("|")]
+        worth[(cells[2], cells[1])] = cells[3:]
+    # cv at B = 8, raw 44 dB between burley-8 (40) and burley-32 (46): ln N = ln 8 + (4 / 6) ln 4, N = 8 x 4^(2/3)
+    # = 20.16 (linear in N instead: 24.0; the runs swapped: 8 x 4^(1/3) = 12.7); resolved 52 between 50 and 53: the
+    # same 2/3, 20.16. Its 3 ms between burley-8's 2 ms and burley-32's 8 ms: N = 8 + 24 (1 / 6) = 12.0.
+    check(worth.get(("cv", "8")) == ["20.2", "20.2", "12.0"], f"cv at B = 8 is worth burley-20.2 and buys burley-12.0 "
+          f"(got {worth.get(('cv', '8'))})")
+    # cv at B = 32: raw 45.5, N = 8 x 4^(5.5 / 6) = 28.51; resolved 54 over burley-32's 53: "> 32"; its 8 ms is
+    # burley-32's own: 32.0.
+    check(worth.get(("cv", "32")) == ["28.5", "> 32", "32.0"], f"cv at B = 32 (got {worth.get(('cv', '32'))})")
+    check(worth.get(("spvg", "8")) == ["> 32", "> 32", "> 32"], f"spvg past every run (got {worth.get(('spvg', '8'))})")
+    check(worth.get(("cv-notex", "4")) == ["< 4", "< 4", "< 4"],
+          f"cv-notex under every run (got {worth.get(('cv-notex', '4'))})")
+    check(("burley-8", "8") not in worth and ("separable-17", "-") not in worth, "only the adaptive methods have rows")
 
     # The plot's SSS-ms panel: the adaptive points' labels carry the same words (matplotlib's Agg backend).
     labels = []

@@ -6,6 +6,7 @@
 #include <catch2/catch_test_macros.hpp>
 
 #include <cmath>
+#include <string>
 
 #include "numerics_support.hpp"
 
@@ -62,7 +63,9 @@ drift_report run_long(E e, schedule sch, bool compensated, double offset, double
 }
 
 void report(const char* what, const drift_report& r) {
-    INFO(what << ": failed at step " << r.failed_at << ", worst relative mean error "
+    INFO(what << ": " << (r.failed_at == 0 ? std::string("held at every step")
+                                           : "failed at step " + std::to_string(r.failed_at))
+              << ", worst relative mean error "
               << static_cast<double>(r.worst_mean_error) << " (bound " << static_cast<double>(r.final_mean_bound)
               << "), worst relative variance error " << static_cast<double>(r.worst_variance_error) << " (bound "
               << static_cast<double>(r.final_variance_bound) << ")");

@@ -32,9 +32,10 @@ class Command:
         return os.path.splitext(self.script)[0]
 
 
-_RUN_EVAL = ("docs/results.md blocks context, equal-samples, equal-time, lag, variations, teaser, teaser-time, "
-             "heatmaps; docs/results/*.md (pareto, pareto-time, variations, switch, scaling-resolution, "
-             "scaling-radius, seed-spread) and docs/results/*.png (with the default raw folder; else RAW_DIR/out/)")
+_RUN_EVAL = ("docs/results.md blocks context, equal-samples, worth, lag, variations, teaser, teaser-time, "
+             "heatmaps; docs/results/*.md (pareto, pareto-time, worth, equal-time, variations, switch, "
+             "scaling-resolution, scaling-radius, seed-spread) and docs/results/*.png (with the default raw folder; "
+             "else RAW_DIR/out/)")
 
 COMMANDS = [
     Command("run", "run_eval.py", "the evaluation on this machine's renderer: render the job list (or a shard of "
