@@ -20,7 +20,8 @@ name the command, the commit and the GL renderer). The list's order, and so each
                  (burley-B, spvg, cv, cv-notex; with separable-17 and diffuse at B = 8), first seed
   4. teaser      per seed: light-off in quality mode (the default target variance), the paper's teaser methods
   5. spread      emcv-golden: the golden cases with seed 2 against the goldens (seed 1)
-  6. cost        per quality scene x group: emcv-eval, SSS pass ms and samples per frame (the time axis)
+  6. cost        per round (COST_ROUNDS) x quality scene x group: emcv-eval, SSS pass ms and samples per frame
+                 (the time axis: per method the median over rounds of each round's median over frames)
   7. switch      light-off, flicker, club: emcv-eval in quality mode, samples and SSS ms per frame
   8. heatmap     light-off: per-pixel sample counts around the switch and cv's alpha (emcv-eval)
   9. scaling     static: SSS ms against resolution (one job per size), then against --sss-scale (one per scale)
@@ -74,6 +75,7 @@ BUDGETS = [4, 8, 16, 32]
 # burley-N beyond the largest B, run alone (quality and cost): an adaptive method at B = 16 or 32 takes more SSS time
 # than burley-32, and the equal-time comparison interpolates between burley runs, never past the slowest.
 REACH_BUDGETS = [64]
+COST_ROUNDS = 3  # rounds of the cost stage (not with --quick: one)
 VARIATION_BUDGETS = [8, 16]
 STORY_BUDGET = 8  # the budget of the switch story, the per-frame plots and the banding crop
 SEPARABLE = ["separable-11", "separable-17", "separable-25"]
@@ -253,11 +255,15 @@ def job_list(c):
         jobs.append(Job("spread", "golden-seed-spread", "emcv-golden", ["render", "--seed", "2"],
                         ["image", "verdict", "failing_percent", "max_error", "rmse"]))
     if "cost" in c.stages:
-        for scene in c.scenes:
-            for group in c.groups:
-                b = None if group == "fixed" else int(group[1:])
-                jobs.append(eval_job("cost", f"{scene}-{group}", scene, group_methods(group), c.size,
-                                     frames_of[scene], b, meta={"scene": scene, "group": group}))
+        # COST_ROUNDS rounds of every scene and group, one after the other: each time is the median over the rounds
+        # (cost_ms), so one slow stretch of the machine moves one round, not the table.
+        for r in range(1 if c.quick else COST_ROUNDS):
+            for scene in c.scenes:
+                for group in c.groups:
+                    b = None if group == "fixed" else int(group[1:])
+                    jobs.append(eval_job("cost", f"{scene}-{group}" + (f"-r{r + 1}" if r else ""), scene,
+                                         group_methods(group), c.size, frames_of[scene], b,
+                                         meta={"scene": scene, "group": group}))
     cost_size = "64x64" if c.quick else "128x128"
     if "switch" in c.stages:
         for scene, frames in (("light-off", 60), ("flicker", 48), ("club", 60)):
@@ -714,8 +720,9 @@ def quality_blocks(d):
 # ---------------------------------------------------------------------------------------------------- time tables
 
 def cost_ms(d):
-    """(scene, group, method) -> median SSS ms over frames 1.. of the cost job (frame 0 compiles and warms up)."""
-    out = {}
+    """(scene, group, method) -> SSS ms: the median over the cost stage's rounds of each round's median over frames
+    1.. (frame 0 compiles and warms up)."""
+    rounds = {}
     for j in d.jobs:
         if j.stage != "cost":
             continue
@@ -724,8 +731,8 @@ def cost_ms(d):
             if int(r["frame"]) >= 1:
                 by.setdefault(r["method"], []).append(to_float(r["sss_ms"]))
         for m, xs in by.items():
-            out[(j.meta["scene"], j.meta["group"], m)] = median(xs)
-    return out
+            rounds.setdefault((j.meta["scene"], j.meta["group"], m), []).append(median(xs))
+    return {key: median(xs) for key, xs in rounds.items()}
 
 
 def family_curve(d, ms, scene, family, column):
