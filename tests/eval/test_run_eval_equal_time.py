@@ -6,7 +6,8 @@ log SSS time at its own SSS time), on data made up here (no renderer):
   - "-" for the methods that are not adaptive;
   - the Pareto plot's SSS-ms panel labels each adaptive point with the same gap where there is one;
   - the worth table: the burley-N of equal PSNR (log N linear in dB between the burley runs that bracket it) and
-    the burley-N of equal SSS time (N linear in ms), worked by hand; outside the runs "> N" or "< N".
+    the burley-N of equal SSS time (N linear in ms), and the burley-N of 1 dB under (lead_db), worked by hand;
+    outside the runs "> N" or "< N".
 
     /usr/bin/python3 tests/eval/test_run_eval_equal_time.py
 """
@@ -100,6 +101,13 @@ def main():
     check(worth.get(("cv-notex", "4")) == ["< 4", "< 4", "< 4"],
           f"cv-notex under every run (got {worth.get(('cv-notex', '4'))})")
     check(("burley-8", "8") not in worth and ("separable-17", "-") not in worth, "only the adaptive methods have rows")
+    # With lead_db = 1 a column more after the raw worth: cv at B = 8, 44 - 1 = 43 dB, halfway between burley-8 (40)
+    # and burley-32 (46): N = 8 x 4^(1/2) = 16.0, the N its pass must cost less than to lead by 1 dB at equal time.
+    lead = run_eval.worth_table(d, ms, ["cv"], lead_db=1.0).splitlines()
+    check("raw, 1 dB under" in lead[0], f"the lead column is named (header: {lead[0]})")
+    row = next((line for line in lead[2:] if "| cv | " in line and "| 8 |" in line), "")
+    check([c.strip() for c in row.strip("|").split("|")][3:] == ["20.2", "16.0", "20.2", "12.0"],
+          f"cv at B = 8 with the 1 dB column: 20.2, 16.0, 20.2, 12.0 (got {row})")
 
     # The plot's SSS-ms panel: the adaptive points' labels carry the same words (matplotlib's Agg backend).
     labels = []
