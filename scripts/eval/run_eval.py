@@ -813,12 +813,13 @@ def burley_samples_at(points, x):
     return pts[0][1], None
 
 
-def worth_table(d, ms, methods, lead_db=None):
+def worth_table(d, ms, methods, lead_db=None, budgets=None):
     """Per scene, B and adaptive method: the burley-N its image is worth (the N of equal PSNR, raw and resolved,
     interpolated in log N between the burley runs) beside the burley-N that its SSS time buys (the N of equal time).
     The first is quality alone, so it holds on any device: the method wins at equal time wherever its pass costs less
     than that many samples of burley's. With `lead_db`, a column more: the burley-N of the raw PSNR lead_db under
-    the method's, which its pass must cost less than for it to lead burley-N by lead_db at equal time."""
+    the method's, which its pass must cost less than for it to lead burley-N by lead_db at equal time. `budgets`:
+    the rows' B (default BUDGETS)."""
     lead = f" | raw, {lead_db:g} dB under" if lead_db else ""
     lines = [f"| scene | B | method | worth burley-N, raw{lead} | resolved | its SSS time buys burley-N |",
              "|---|---:|---|---:|" + ("---:|" if lead_db else "") + "---:|---:|"]
@@ -831,7 +832,7 @@ def worth_table(d, ms, methods, lead_db=None):
         burley = {c: [(d.window_mean(("quality", scene, f"B{b}", f"burley-{b}"), c, MEAN_FROM), math.log(b), b)
                       for b in runs] for c in ("psnr_db", "psnr_resolved_db")}
         times = [(ms[(scene, f"B{b}", f"burley-{b}")], b, b) for b in runs if (scene, f"B{b}", f"burley-{b}") in ms]
-        for b in BUDGETS:
+        for b in budgets or BUDGETS:
             for m in methods:
                 key = ("quality", scene, f"B{b}", m)
                 if key not in d.series:
@@ -1172,7 +1173,7 @@ def assemble(jobs, raw_dir, c, out_dir, write_doc):
     if ms:
         blocks["equal-time"] = equal_time_table(d, ms)
         blocks["pareto-time"] = pareto_time_table(d, ms)
-        blocks["worth"] = worth_table(d, ms, ["cv"])
+        blocks["worth"] = worth_table(d, ms, ["cv"], budgets=[STORY_BUDGET, BUDGETS[-1]])  # results.md: B = 8, 32
         blocks["worth-methods"] = worth_table(d, ms, ADAPTIVE, lead_db=1.0)
     if "switch" in stages:
         rows = stage_rows(d, "switch")
