@@ -276,7 +276,6 @@ std::optional<std::string> compare_at_equal_time(const std::vector<metrics_row>&
     std::string out = name + " vs burley-N at " + name + "'s SSS time, " +
                       span_text(first_change, cand.last_frame, window) + ": ";
     const std::string from_frame = warm_up_left_out ? ", from frame " + std::to_string(timing_from_frame) : "";
-    // Outside the burley runs' times the curve is not known: say so rather than extrapolate.
     // What the method's image is worth in burley samples (equal PSNR): quality alone, so it holds on any device; the
     // method wins at equal time wherever its pass costs less than that many burley samples.
     const std::optional<double> resolved_name = mean_psnr(cand.psnr_resolved);
@@ -285,6 +284,7 @@ std::optional<std::string> compare_at_equal_time(const std::vector<metrics_row>&
     if (resolved_name && std::isfinite(*resolved_name))
         worth += " (resolved " +
                  worth_text(curve, *resolved_name, [](const burley_point& b) { return b.psnr_resolved_db; }) + ")";
+    // Outside the burley runs' times the curve is not known: say so rather than extrapolate.
     const burley_point &fastest = curve.front(), &slowest = curve.back();
     if (t > slowest.sss_ms || t < fastest.sss_ms) {
         const burley_point& edge = t > slowest.sss_ms ? slowest : fastest;

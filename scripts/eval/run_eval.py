@@ -746,14 +746,20 @@ def family_curve(d, ms, scene, family, column):
     return sorted(pts)
 
 
-def at_time(curve, t):
-    """The curve's PSNR at time t, linear in log time between its two neighbouring points; None outside."""
-    if not curve or t < curve[0][0] or t > curve[-1][0]:
+def linear_at(points, x):
+    """y at x on the line through the two of `points` [(x, y), ...] (sorted by x) that bracket x; None outside them
+    (no extrapolation)."""
+    if not points or x < points[0][0] or x > points[-1][0]:
         return None
-    for (t0, p0), (t1, p1) in zip(curve, curve[1:]):
-        if t0 <= t <= t1:
-            return p0 if t1 == t0 else p0 + (p1 - p0) * (math.log(t) - math.log(t0)) / (math.log(t1) - math.log(t0))
-    return curve[0][1]
+    for (x0, y0), (x1, y1) in zip(points, points[1:]):
+        if x0 <= x <= x1:
+            return y0 if x1 == x0 else y0 + (y1 - y0) * (x - x0) / (x1 - x0)
+    return points[0][1]
+
+
+def at_time(curve, t):
+    """The curve's PSNR at time t (> 0), linear in log time between its two neighbouring points; None outside."""
+    return linear_at([(math.log(ti), p) for ti, p in curve], math.log(t))
 
 
 def equal_time_gap(curve, t, value):
@@ -807,10 +813,7 @@ def burley_samples_at(points, x):
         return None, f"> {pts[-1][2]}"
     if x < pts[0][0]:
         return None, f"< {pts[0][2]}"
-    for (x0, y0, _), (x1, y1, _) in zip(pts, pts[1:]):
-        if x0 <= x <= x1:
-            return (y0 if x1 == x0 else y0 + (y1 - y0) * (x - x0) / (x1 - x0)), None
-    return pts[0][1], None
+    return linear_at([(xi, yi) for xi, yi, _ in pts], x), None
 
 
 def worth_table(d, ms, methods, lead_db=None, budgets=None):
