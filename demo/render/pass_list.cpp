@@ -43,12 +43,15 @@ frame_planner::frame_planner(const scene& s, const method& m, int width, int hei
                              const sampling_mode& sampling, bool jitter)
     : s_(&s), m_(m), width_(width), height_(height), resolve_(resolve), budget_(sampling.budget),
       plan_ahead_(sampling.budget && sampling.plan_ahead),
+      update_period_(plan_ahead_ ? sampling.update_period : 1), learning_updates_(sampling.learning_updates),
       jitter_(jitter && resolve == resolve_mode::taa && row_of(m).resolves()), casters_(shadow_casters(s)) {
     for (const object& o : s.objects)
         if (s.materials.at(static_cast<std::size_t>(o.material)).scatters()) sss_bounds_.push_back(object_bounds(s, o));
     passes_.reserve(casters_.size() + 8);
     inputs_.assign(6 + 3 * s.lights.size(), 0.0f);
     held_inputs_ = inputs_;
+    lights_.assign(3 * s.lights.size(), 0.0f);
+    previous_lights_ = lights_;
 }
 
 const std::vector<planned_pass>& frame_planner::plan(int frame, const std::vector<float>& light_scale) {
@@ -61,15 +64,17 @@ const std::vector<planned_pass>& frame_planner::plan(int frame, const std::vecto
                          });
     // The ground truth is the converged integral: it is rendered again only when its inputs changed (camera pose,
     // light radiance; objects do not move in this scene model), else its last result is shown again.
+    previous_lights_.swap(lights_);
+    for (std::size_t i = 0; i < s.lights.size(); ++i) {
+        const float scale = i < light_scale.size() ? light_scale[i] : 1.0f;
+        const glm::vec3 e = s.lights[i].color * s.lights[i].intensity.at(frame) * scale;
+        lights_[3 * i] = e.x; lights_[3 * i + 1] = e.y; lights_[3 * i + 2] = e.z;
+    }
     reused_ = false;
     if (row_of(m_).holds_result() && visible) {
         inputs_[0] = v.position.x; inputs_[1] = v.position.y; inputs_[2] = v.position.z;
         inputs_[3] = v.target.x; inputs_[4] = v.target.y; inputs_[5] = v.target.z;
-        for (std::size_t i = 0; i < s.lights.size(); ++i) {
-            const float scale = i < light_scale.size() ? light_scale[i] : 1.0f;
-            const glm::vec3 e = s.lights[i].color * s.lights[i].intensity.at(frame) * scale;
-            inputs_[6 + 3 * i] = e.x; inputs_[7 + 3 * i] = e.y; inputs_[8 + 3 * i] = e.z;
-        }
+        std::copy(lights_.begin(), lights_.end(), inputs_.begin() + 6);
         reused_ = held_ && inputs_ == held_inputs_;
         if (!reused_) {
             held_inputs_ = inputs_;
@@ -78,6 +83,7 @@ const std::vector<planned_pass>& frame_planner::plan(int frame, const std::vecto
     }
     scatters_ = visible && !reused_;
     planned_by_previous_ = false;
+    reuses_plan_ = false;
 
     passes_.clear();
     passes_.push_back({pass_id::gbuffer, 0, 0});
@@ -100,9 +106,21 @@ const std::vector<planned_pass>& frame_planner::plan(int frame, const std::vecto
                 // frame when that one shows this view again.
                 planned_by_previous_ = plan_ahead_ && planned_frame_ == frame;
                 if (budget_ && !planned_by_previous_) passes_.push_back({pass_id::sss_adaptive_samples, 0, 0});
-                const bool plans_next = plan_ahead_ && !jitter_ && same_camera(camera_matrices(s.view, frame + 1, width_, height_), v);
-                passes_.push_back({pass_id::sss_burley, 0, 0, plans_next});
-                planned_frame_ = plans_next ? frame + 1 : -1;
+                const bool same_next = plan_ahead_ && !jitter_ && same_camera(camera_matrices(s.view, frame + 1, width_, height_), v);
+                // Updating one frame in M: a still view (planned by the previous frame) under still lights, whose
+                // history has learnt since the last change, reuses the last update's plan on M - 1 frames of M.
+                if (!planned_by_previous_ || lights_ != previous_lights_) updates_since_change_ = 0;
+                reuses_plan_ = planned_by_previous_ && updates_since_change_ >= learning_updates_ &&
+                               reuses_since_update_ + 1 < update_period_;
+                // A frame that reuses the plan leaves it valid for the next frame of the same view.
+                passes_.push_back({pass_id::sss_burley, 0, 0, same_next && !reuses_plan_, reuses_plan_});
+                if (reuses_plan_) {
+                    ++reuses_since_update_;
+                } else {
+                    reuses_since_update_ = 0;
+                    ++updates_since_change_;
+                }
+                planned_frame_ = same_next ? frame + 1 : -1;
                 break;
             }
         }

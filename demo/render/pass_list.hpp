@@ -56,8 +56,13 @@ struct planned_pass {
     /// sss_burley of an adaptive method in budget mode: it also plans the next frame's counts (that frame shows
     /// this frame's view: frame_planner::plan), so that frame records no sss-adaptive-samples.
     bool plans_next = false;
+    /// sss_burley of an adaptive method in budget mode, on a frame between two updates of a still view under still
+    /// lights (sampling_mode::update_period): it samples with the counts the last update planned and neither
+    /// updates the history nor plans (no samples pass either).
+    bool reuses_plan = false;
     bool operator==(const planned_pass& o) const {
-        return id == o.id && light == o.light && layer == o.layer && plans_next == o.plans_next;
+        return id == o.id && light == o.light && layer == o.layer && plans_next == o.plans_next &&
+               reuses_plan == o.reuses_plan;
     }
 };
 
@@ -81,6 +86,10 @@ public:
     /// (view and projection bit for bit, so the same G-buffer: objects do not move in the scene model) plans that
     /// frame's counts in its burley pass (planned_pass::plans_next), and that frame, planned next, records no
     /// samples pass: the data of a still view allow the fusion. Any other frame records it.
+    /// With `sampling.update_period` M > 1, a frame planned by the previous one whose lights (each one's radiance
+    /// times `light_scale`) are those of the previous frame reuses that plan (planned_pass::reuses_plan) once the
+    /// history has taken `sampling.learning_updates` updates since the last change of view or lights, unless M - 1
+    /// frames have reused it since the last update: the history is updated on one frame in M.
     /// `jitter`: the camera moves by taa_jitter(frame) under resolve taa (render_options::jitter; never the
     /// reference's).
     frame_planner(const scene& s, const method& m, int width, int height, resolve_mode resolve,
@@ -106,6 +115,8 @@ public:
     /// plans_next): it records no samples pass, and its history is updated where that frame left it (in place,
     /// adaptive::history::begin_frame).
     bool planned_by_previous() const { return planned_by_previous_; }
+    /// Whether the last planned frame's burley pass reuses the last update's plan (planned_pass::reuses_plan).
+    bool reuses_plan() const { return reuses_plan_; }
     /// The camera of the last planned frame (the renderer uploads it).
     const view_matrices& view() const { return view_; }
     /// Forget the held result (method switch).
@@ -118,15 +129,21 @@ private:
     resolve_mode resolve_;
     bool budget_;
     bool plan_ahead_;
+    int update_period_;    ///< sampling_mode::update_period
+    int learning_updates_;  ///< sampling_mode::learning_updates
     bool jitter_;
     std::vector<bounding_sphere> sss_bounds_;
     std::vector<std::size_t> casters_;
     std::vector<planned_pass> passes_;
     std::vector<float> inputs_, held_inputs_;
+    std::vector<float> lights_, previous_lights_;  ///< each light's radiance (times its scale) this and last frame
     view_matrices view_;
     bool held_ = false, reused_ = false, scatters_ = false;
     int planned_frame_ = -1;  ///< the frame the last planned frame's burley pass plans (-1: none)
     bool planned_by_previous_ = false;
+    bool reuses_plan_ = false;
+    int updates_since_change_ = 0;  ///< history updates since the last change of view or lights
+    int reuses_since_update_ = 0;   ///< frames that reused the plan since the last update
 };
 
 /// The names of frame_planner's list for one frame, planned from scratch (no held reference result): what

@@ -22,6 +22,9 @@ const std::vector<tunable>& tunables() {
         {"EMCV_HISTORY_PLAN_AHEAD", t::integer, 0, 1, false,
          "budget mode: 1 plans a frame that shows the last frame's view in that frame's burley pass (no samples pass)",
          EMCV_HISTORY_PLAN_AHEAD},
+        {"EMCV_HISTORY_UPDATE_PERIOD", t::integer, 1, 16, false,
+         "budget mode, planned ahead: update the history on one frame in M while view and lights stay still",
+         EMCV_HISTORY_UPDATE_PERIOD},
         {"EMCV_HISTORY_N_MAX", t::integer, 1, 1024, false, "most samples per pixel and frame", EMCV_HISTORY_N_MAX},
         {"EMCV_HISTORY_N_MIN", t::integer, 1, 1024, false, "fewest samples of a pixel that scatters", EMCV_HISTORY_N_MIN},
         {"EMCV_HISTORY_ETA_MOVING", t::real, 0.0, 0.5, true, "moving mean/variance weight (spvg, cv-notex)",
@@ -170,11 +173,25 @@ std::string sampling_mode::text() const {
     return out;
 }
 
+int learning_updates(double eta, double budget, double n_min) {
+    // Each update weighs the history's comoments by 1 - eta, so a pixel whose variance fell to 0 at a change (a
+    // light off) keeps (1 - eta)^k of its old variance after k updates, and N proportional to sigma keeps
+    // N_0 (1 - eta)^(k / 2) samples: from a mean pixel's B down to N_MIN takes 2 ln(B / N_MIN) / -ln(1 - eta)
+    // updates. Never fewer than the memory, 1 / eta.
+    const double release = 2.0 * std::log(std::max(budget / n_min, 1.0)) / -std::log1p(-eta);
+    return static_cast<int>(std::ceil(std::max(release, 1.0 / eta) - 1e-9));
+}
+
 sampling_mode sampling_mode_of(const define_list& defines) {
     const double budget = tunable_value(defines, "EMCV_HISTORY_SPP_BUDGET");
     const bool plan_ahead = tunable_value(defines, "EMCV_HISTORY_PLAN_AHEAD") != 0.0;
-    if (budget > 0.0) return {true, budget, plan_ahead};
-    return {false, tunable_value(defines, "EMCV_HISTORY_TARGET"), false};
+    const int period = static_cast<int>(tunable_value(defines, "EMCV_HISTORY_UPDATE_PERIOD"));
+    if (budget > 0.0) {
+        const double eta = std::min(tunable_value(defines, "EMCV_HISTORY_ETA_MOVING"), tunable_value(defines, "EMCV_HISTORY_ETA_EMCM"));
+        return {true, budget, plan_ahead, plan_ahead ? period : 1,
+                learning_updates(eta, budget, tunable_value(defines, "EMCV_HISTORY_N_MIN"))};
+    }
+    return {false, tunable_value(defines, "EMCV_HISTORY_TARGET"), false, 1, 0};
 }
 
 }  // namespace emcv::demo

@@ -57,10 +57,22 @@ struct sampling_mode {
     /// Budget mode and EMCV_HISTORY_PLAN_AHEAD: a frame whose next frame shows its view plans that frame's
     /// counts in its burley pass (frame_planner), and the next frame records no samples pass.
     bool plan_ahead = false;
+    /// Budget mode with plan_ahead (EMCV_HISTORY_UPDATE_PERIOD, else 1): while view and lights stay still the
+    /// history is updated on one frame in update_period; the frames between reuse that update's plan
+    /// (frame_planner).
+    int update_period = 1;
+    /// Budget mode: the updates a history takes after a change of view or lights before frames may reuse a plan
+    /// (learning_updates of the slower of EMCV_HISTORY_ETA_MOVING and EMCV_HISTORY_ETA_EMCM, B and N_MIN).
+    int learning_updates = 0;
     /// "budget 8 spp" or "target variance 0.0001": what metrics and summaries print.
     std::string text() const;
 };
 sampling_mode sampling_mode_of(const define_list& defines);
+
+/// The updates after a change of view or lights before a budget's frames may skip the history's update
+/// (docs/renderer.md, "Updating one frame in M"): enough for a pixel whose variance fell to 0 to fall from B
+/// samples to N_MIN, ceil(2 ln(B / N_MIN) / -ln(1 - eta)), and at least the memory ceil(1 / eta).
+int learning_updates(double eta, double budget, double n_min);
 
 /// `--spp-budget B` (B in (0, 1024]) or `--target-variance V` (V in (0, 1]) as the tunables they set:
 /// EMCV_HISTORY_SPP_BUDGET = B, or EMCV_HISTORY_TARGET = V with the budget set to 0. `previous` holds the

@@ -21,7 +21,7 @@ name the command, the commit and the GL renderer). The list's order, and so each
   4. teaser      per seed: light-off in quality mode (the default target variance), the paper's teaser methods
   5. spread      emcv-golden: the golden cases with seed 2 against the goldens (seed 1)
   6. cost        per round (COST_ROUNDS) x quality scene x group: emcv-eval, SSS pass ms and samples per frame
-                 (the time axis: per method the median over rounds of each round's median over frames)
+                 (the time axis: per method the median over rounds of each round's mean over frames 20..)
   7. switch      light-off, flicker, club: emcv-eval in quality mode, samples and SSS ms per frame
   8. heatmap     light-off: per-pixel sample counts around the switch and cv's alpha (emcv-eval)
   9. scaling     static: SSS ms against resolution (one job per size), then against --sss-scale (one per scale)
@@ -720,18 +720,19 @@ def quality_blocks(d):
 # ---------------------------------------------------------------------------------------------------- time tables
 
 def cost_ms(d):
-    """(scene, group, method) -> SSS ms: the median over the cost stage's rounds of each round's median over frames
-    1.. (frame 0 compiles and warms up)."""
+    """(scene, group, method) -> SSS ms: the median over the cost stage's rounds of each round's mean over frames
+    MEAN_FROM.., the frames the quality tables average: the mean, because a budget's frames that reuse a plan cost
+    less than the frame that updates (docs/renderer.md, "Updating one frame in M")."""
     rounds = {}
     for j in d.jobs:
         if j.stage != "cost":
             continue
         by = {}
         for r in read_csv(j.raw(d.raw_dir)):
-            if int(r["frame"]) >= 1:
+            if int(r["frame"]) >= MEAN_FROM:
                 by.setdefault(r["method"], []).append(to_float(r["sss_ms"]))
         for m, xs in by.items():
-            rounds.setdefault((j.meta["scene"], j.meta["group"], m), []).append(median(xs))
+            rounds.setdefault((j.meta["scene"], j.meta["group"], m), []).append(statistics.fmean(xs))
     return {key: median(xs) for key, xs in rounds.items()}
 
 
@@ -853,7 +854,7 @@ def worth_table(d, ms, methods, lead_db=None, budgets=None):
 def pareto_time_table(d, ms):
     """Per scene, setting and method: the SSS ms, its ratio to burley-B's, and for the adaptive methods the PSNR
     gap (raw, resolved; frames MEAN_FROM..) to the burley runs interpolated at the method's own SSS time."""
-    lines = ["| scene | method | B | SSS ms (median, frames 1..) | x burley-B | dB vs burley at equal time, raw | "
+    lines = ["| scene | method | B | SSS ms (mean, frames 20..) | x burley-B | dB vs burley at equal time, raw | "
              "resolved |", "|---|---|---:|---:|---:|---:|---:|"]
     curves = {}
     for (scene, group, m), t in sorted(ms.items(), key=lambda kv: (d.scenes.index(kv[0][0]) if kv[0][0] in d.scenes
@@ -998,7 +999,7 @@ def plot_pareto(d, ms, out_dir, device):
     plt = plt_module()
     for scene in d.scenes:
         points = quality_points(d, scene)
-        xs_kinds = [("spp", "mean samples per SSS pixel (log)")] + ([("ms", "SSS pass ms (median; log)")] if ms else [])
+        xs_kinds = [("spp", "mean samples per SSS pixel (log)")] + ([("ms", "SSS pass ms (mean; log)")] if ms else [])
         fig, axes = plt.subplots(2, len(xs_kinds), figsize=(6 * len(xs_kinds), 8), squeeze=False)
         for col, (kind, xlabel) in enumerate(xs_kinds):
             for row, (column, title) in enumerate((("psnr_db", "raw"), ("psnr_resolved_db", "resolved (taa)"))):

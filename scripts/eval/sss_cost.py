@@ -5,8 +5,9 @@
 
 Runs emcv-eval (methods side by side, frame by frame) RUNS times for each build directory given, the builds
 interleaved run by run so that the machine's load hits them alike, and prints one markdown row per build and
-method: the median over runs of the method's median SSS time over frames FIRST.. (sss_ms, the sum of the sss-*
-passes), its ratio to the baseline's (the ratio is taken within each run, then the median over runs), its mean
+method: the median over runs of the method's mean SSS time over frames FIRST.. (sss_ms, the sum of the sss-*
+passes; the mean, because a budget's frames that reuse a plan cost less than the frame that updates:
+docs/renderer.md, "Updating one frame in M"), its ratio to the baseline's (the ratio is taken within each run, then the median over runs), its mean
 samples per SSS pixel and the ratio of those. Under --spp-budget B the baseline is burley-B; under
 --target-variance V it is spvg, and --first/--last pick the window (e.g. the 30 frames after a switch).
 
@@ -59,7 +60,7 @@ def run_eval(build, a, methods, defines=()):
 
 
 def summarise(text, first, last):
-    """An emcv-eval CSV -> ({method: (median SSS ms over frames first..last, mean samples per SSS pixel)}, the
+    """An emcv-eval CSV -> ({method: (mean SSS ms over frames first..last, mean samples per SSS pixel)}, the
     clock of its times)."""
     rows = list(csv.DictReader(io.StringIO(text)))
     per = {}
@@ -67,7 +68,7 @@ def summarise(text, first, last):
     for r in rows:
         if first <= int(r["frame"]) <= last:
             per.setdefault(r["method"], []).append((float(r["sss_ms"]), float(r["mean_spp"])))
-    return {m: (statistics.median(t for t, _ in v), statistics.fmean(n for _, n in v)) for m, v in per.items()}, clock
+    return {m: (statistics.fmean(t for t, _ in v), statistics.fmean(n for _, n in v)) for m, v in per.items()}, clock
 
 
 def table_rows(results, methods, baseline):
@@ -87,7 +88,7 @@ def table_rows(results, methods, baseline):
 def table(setting, results, methods, baseline, label_column):
     """The markdown this script prints: a heading line (setting, runs, clocks) and one row per label and method."""
     lines = [setting, "",
-             f"| {label_column} | method | SSS ms (median) | / {baseline} | samples per SSS pixel | / {baseline} |",
+             f"| {label_column} | method | SSS ms (mean) | / {baseline} | samples per SSS pixel | / {baseline} |",
              "|---|---|---|---|---|---|"]
     lines += [f"| {b} | {m} | {ms:.3f} | {ratio:.2f} | {spp:.2f} | {spp_ratio:.2f} |"
               for b, m, ms, ratio, spp, spp_ratio in table_rows(results, methods, baseline)]

@@ -23,7 +23,17 @@
 
 #if defined(EMCV_ADAPTIVE_SPVG) || defined(EMCV_ADAPTIVE_CV) || defined(EMCV_ADAPTIVE_NOTEX)
 #define EMCV_BURLEY_ADAPTIVE 1
+// Budget mode, a frame between two updates of a still view and still lights (EMCV_ADAPTIVE_REUSE_PLAN,
+// frame_planner): the pass samples with the counts the last update planned (the samples image and lambda as that
+// pass left them, rounded afresh) and neither updates the history nor plans: docs/renderer.md, "Updating one
+// frame in M".
+#if defined(EMCV_ADAPTIVE_REUSE_PLAN) && defined(EMCV_ADAPTIVE_PLAN_NEXT)
+#error "sss_burley: a frame that reuses the plan does not plan the next frame"
+#endif
+#if !defined(EMCV_ADAPTIVE_REUSE_PLAN)
+#define EMCV_BURLEY_UPDATES 1
 #define EMCV_ADAPTIVE_TILE_UPDATE 1  // emcv_adaptive_update_tile and its shared memory
+#endif
 // Budget mode, the next frame showing this frame's view (EMCV_ADAPTIVE_PLAN_NEXT): after its update the pass
 // plans the next frame's N as that frame's samples pass would (plan_next_frame); the solve pass follows.
 #include "adaptive/samples.h"
@@ -31,7 +41,7 @@
 
 layout(local_size_x = EMCV_RENDER_TILE_SIZE, local_size_y = EMCV_RENDER_TILE_SIZE) in;
 
-#if defined(EMCV_BURLEY_ADAPTIVE)
+#if defined(EMCV_BURLEY_UPDATES)
 // Read back by the history update: the value as stored (binary16), which is what the display shows.
 layout(rgba16f, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_SSS_OUT)) uniform image2D out_scattered;
 #else
@@ -41,7 +51,7 @@ layout(r32ui, EMCV_LAYOUT_IMAGE_BINDING(EMCV_RENDER_IMG_COUNT)) writeonly unifor
 
 shared uint tile_sample_sum;
 shared uint tile_sample_max;
-#if defined(EMCV_BURLEY_ADAPTIVE)
+#if defined(EMCV_BURLEY_UPDATES)
 // What the history update of this invocation's pixel reads after the tile's noise test, and the planning of the
 // next frame after it (scatter leaves them: every G-buffer value read once).
 vec3 pending_scattered = vec3(0.0f);
@@ -180,7 +190,7 @@ uint scatter(ivec2 p) {
     float noise = keeps_noise ? emcv_sss_noise(sum_w, sum_w2, sum_w2l, sum_w2l2, scattered, n) : 1.0f;
     imageStore(out_scattered, p, vec4(scattered, noise));
     imageStore(out_count, p, uvec4(n));
-#if defined(EMCV_BURLEY_ADAPTIVE)
+#if defined(EMCV_BURLEY_UPDATES)
     // The invocation reads its own store back: the binary16 value the display shows (and the separate update
     // pass this replaced used to read); main pushes it once the tile's noise test is done.
     pending_scattered = imageLoad(out_scattered, p).xyz;
@@ -208,7 +218,7 @@ void main() {
     sort_tile_by_count(p);
 #endif
     uint n = scatter(p);
-#if defined(EMCV_BURLEY_ADAPTIVE)
+#if defined(EMCV_BURLEY_UPDATES)
     emcv_adaptive_update_tile_diffuse(assigned_local, tile_origin, pending_scattered, pending_unscattered, pending_albedo, n);
 #endif
     // Sample statistics reduced per tile in shared memory, then one global atomic per tile (not per pixel).

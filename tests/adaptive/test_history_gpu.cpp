@@ -719,17 +719,20 @@ TEST_CASE("a poisoned history texel (NaN, Inf, negative variance) is reset and n
     CHECK(messenger.error_count() == 0);
 }
 
-TEST_CASE("only a budget's burley pass plans the next frame: asked under a quality target, the history refuses by name") {
+TEST_CASE("only a budget's burley pass plans the next frame or reuses a plan: asked under a quality target, the history refuses by name") {
     emcv::gl::context ctx = emcv::test::context_or_skip();
     emcv::gl::debug_messenger messenger;
+    using emcv::demo::adaptive::burley_variant;
     history quality(emcv::demo::method{kind::cv, 0}, width, height, shader_options(), emcv_test::shader_dir());
     REQUIRE_FALSE(quality.budget_mode());
-    CHECK_THROWS_WITH(quality.use_burley(true), Catch::Matchers::ContainsSubstring("only a budget plans"));
-    quality.use_burley(false);  // the plain program is there
+    CHECK_THROWS_WITH(quality.use_burley(burley_variant::plans_next), Catch::Matchers::ContainsSubstring("only a budget plans"));
+    CHECK_THROWS_WITH(quality.use_burley(burley_variant::reuses_plan), Catch::Matchers::ContainsSubstring("only a budget reuses"));
+    quality.use_burley(burley_variant::updates);  // the plain program is there
     emcv::gl::preprocess_options options = shader_options();
     options.defines.emplace_back("EMCV_HISTORY_SPP_BUDGET", "4.0f");
     history budget(emcv::demo::method{kind::cv, 0}, width, height, options, emcv_test::shader_dir());
-    budget.use_burley(true);  // built on first use
+    budget.use_burley(burley_variant::plans_next);  // built on first use
+    budget.use_burley(burley_variant::reuses_plan);
     CHECK(messenger.error_count() == 0);
 }
 

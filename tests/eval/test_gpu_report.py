@@ -160,7 +160,7 @@ def main():
               "Memory 2619 MHz of 2619 MHz" in text, "the clock state from clocks.txt is on the context line")
         check("**Made-up GPU 9000**, OpenGL 4.6.0 made-up 1.2" in text and "at commit abc1234, in 65 s" in text,
               "the context line names the renderer, its version, the commit and the steps' seconds")
-        check("budget 8\n\n| build | method | SSS ms (median) | / burley-8 |" in text and
+        check("budget 8\n\n| build | method | SSS ms (mean) | / burley-8 |" in text and
               "| build | cv | 0.115 | 1.05 | 8.00 | 1.00 |" in text, "the cost block holds sss_cost.py's table")
         outside = [b.split("<!-- END GENERATED:")[-1] for b in text.split("<!-- BEGIN GENERATED:")]
         check(outside == [b.split("<!-- END GENERATED:")[-1] for b in original.split("<!-- BEGIN GENERATED:")],

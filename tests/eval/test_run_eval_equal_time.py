@@ -7,7 +7,8 @@ log SSS time at its own SSS time), on data made up here (no renderer):
   - the Pareto plot's SSS-ms panel labels each adaptive point with the same gap where there is one;
   - the worth table: the burley-N of equal PSNR (log N linear in dB between the burley runs that bracket it) and
     the burley-N of equal SSS time (N linear in ms), and the burley-N of 1 dB under (lead_db), worked by hand;
-    outside the runs "> N" or "< N".
+    outside the runs "> N" or "< N";
+  - the time axis (cost_ms): the median over rounds of each round's mean over frames MEAN_FROM.., worked by hand.
 
     /usr/bin/python3 tests/eval/test_run_eval_equal_time.py
 """
@@ -108,6 +109,23 @@ def main():
     row = next((line for line in lead[2:] if "| cv | " in line and "| 8 |" in line), "")
     check([c.strip() for c in row.strip("|").split("|")][3:] == ["20.2", "16.0", "20.2", "12.0"],
           f"cv at B = 8 with the 1 dB column: 20.2, 16.0, 20.2, 12.0 (got {row})")
+
+    # The time axis (cost_ms): per round the mean over frames MEAN_FROM.. (a budget's update frame costs more than
+    # the frames that reuse its plan), then the median over rounds. Round 1: frames 0-19 at 100 ms (left out),
+    # frames 20-27 at 1 ms and 28-29 at 9 ms: mean (8 + 18) / 10 = 2.6 (the median would be 1.0, frames from 0
+    # on 70.78). Rounds 2 and 3 at 2.0 and 5.0 every frame: the median of 2.6, 2.0, 5.0 is 2.6.
+    with tempfile.TemporaryDirectory() as raw:
+        cost = object.__new__(run_eval.Data)
+        cost.raw_dir, cost.jobs = raw, []
+        os.makedirs(os.path.join(raw, "cost"))
+        for r, times in enumerate(([100.0] * 20 + [1.0] * 8 + [9.0] * 2, [2.0] * 30, [5.0] * 30)):
+            job = run_eval.Job("cost", f"static-B8-r{r + 1}", "emcv-eval", [], meta={"scene": SCENE, "group": "B8"})
+            with open(job.raw(raw), "w") as f:
+                f.write("method,frame,sss_ms\n" + "".join(f"cv,{i},{t}\n" for i, t in enumerate(times)))
+            cost.jobs.append(job)
+        got = run_eval.cost_ms(cost).get((SCENE, "B8", "cv"))
+        check(got is not None and abs(got - 2.6) < 1e-9, f"cost_ms: the median over rounds of the mean over frames "
+              f"{run_eval.MEAN_FROM}.. is 2.6 (got {got})")
 
     # The plot's SSS-ms panel: the adaptive points' labels carry the same words (matplotlib's Agg backend).
     labels = []

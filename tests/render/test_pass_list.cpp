@@ -9,6 +9,7 @@
 
 #include "../gpu/gl_test_support.hpp"
 #include "gl/debug.hpp"
+#include "render/adaptive/history.hpp"
 #include "render/renderer.hpp"
 #include "render/tunables.hpp"
 #include "render_test_support.hpp"
@@ -131,6 +132,81 @@ TEST_CASE("a budget's burley pass plans the next frame where the camera holds, a
     CHECK(planner.planned_by_previous());
 }
 
+TEST_CASE("learning_updates: enough updates for a pixel gone dark to fall from B samples to N_MIN, at least 1 / eta") {
+    // 2 ln(8) / -ln(0.8) = 4.1589 / 0.22314 = 18.64 -> 19; B = 2.5: 2 ln(2.5) / 0.22314 = 8.21 -> 9;
+    // B = 1 (nothing to release): the memory 1 / 0.2 = 5; eta = 0.1, B = 8: 4.1589 / 0.10536 = 39.47 -> 40;
+    // N_MIN = 2, B = 8: 2 ln(4) / 0.22314 = 12.42 -> 13.
+    CHECK(learning_updates(0.2, 8.0, 1.0) == 19);
+    CHECK(learning_updates(0.2, 2.5, 1.0) == 9);
+    CHECK(learning_updates(0.2, 1.0, 1.0) == 5);
+    CHECK(learning_updates(0.1, 8.0, 1.0) == 40);
+    CHECK(learning_updates(0.2, 8.0, 2.0) == 13);
+    // The renderer's sampling mode takes the slower weight of the two.
+    define_list defines{{"EMCV_HISTORY_SPP_BUDGET", "8"}, {"EMCV_HISTORY_ETA_MOVING", "0.1"}};
+    CHECK(sampling_mode_of(defines).learning_updates == 40);
+    defines = {{"EMCV_HISTORY_SPP_BUDGET", "8"}, {"EMCV_HISTORY_ETA_EMCM", "0.1"}};
+    CHECK(sampling_mode_of(defines).learning_updates == 40);
+}
+
+namespace {
+
+/// Per frame from 0: whether the burley pass reuses the last update's plan, as one planner plans the frames in
+/// order; `light_scale` from frame `scaled_from` on.
+std::vector<bool> reuse_sequence(const scene& s, const sampling_mode& sampling, int frames, int scaled_from = -1,
+                                 std::vector<float> light_scale = {}) {
+    frame_planner planner(s, method{method::kind::cv, 0}, 64, 48, resolve_mode::taa, sampling);
+    std::vector<bool> out;
+    for (int frame = 0; frame < frames; ++frame) {
+        bool reuses = false, samples = false;
+        for (const planned_pass& p : planner.plan(frame, frame >= scaled_from ? light_scale : std::vector<float>{})) {
+            samples = samples || p.id == pass_id::sss_adaptive_samples;
+            if (p.id != pass_id::sss_burley) continue;
+            reuses = p.reuses_plan;
+            CHECK_FALSE((p.reuses_plan && p.plans_next));  // a reused plan stays: nothing to plan
+        }
+        CHECK(planner.reuses_plan() == reuses);
+        if (reuses) CHECK_FALSE(samples);  // only a frame planned by the previous one reuses
+        out.push_back(reuses);
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("a budget updates the history on one frame in M where view and lights hold, after the learning updates") {
+    // light-off: the camera holds at frames 0-9 and from 14 on (moving in at 11-14), the key light goes off at 30.
+    const scene s = still_move_still();
+    sampling_mode budget{true, 8.0, true, 4, 19};
+    const std::vector<bool> seq = reuse_sequence(s, budget, 80);
+    // Every change restarts the count of updates: frame 0, the camera at 11-14 (frame 14 the last one moved in),
+    // the light at 30. 19 updates from frame 30 are frames 30-48; from 49 on three frames of four reuse the plan.
+    for (int frame = 0; frame < 80; ++frame) {
+        INFO("frame " << frame);
+        CHECK(seq[std::size_t(frame)] == (frame >= 49 && (frame - 49) % 4 != 3));
+    }
+    // The window's toggles change a light too: scaled from frame 60 on, the count restarts there.
+    const std::vector<bool> toggled = reuse_sequence(s, budget, 100, 60, {0.5f, 0.5f, 0.5f, 0.5f});
+    for (int frame = 0; frame < 100; ++frame) {
+        INFO("frame " << frame);
+        CHECK(toggled[std::size_t(frame)] == ((frame >= 49 && frame < 60 && (frame - 49) % 4 != 3) ||
+                                              (frame >= 79 && (frame - 79) % 4 != 3)));
+    }
+    // A shorter learning and another period, one frame in 2: the still stretches before the switch learn too.
+    // Frames 0-4 update, 5-9 alternate; 10 updates (the frame after a reuse); 11-14 move in; 14-18 update, 19-29
+    // alternate; the switch at 30, and from 35 on.
+    const std::vector<bool> short_seq = reuse_sequence(s, sampling_mode{true, 8.0, true, 2, 5}, 50);
+    for (int frame = 0; frame < 50; ++frame) {
+        INFO("frame " << frame);
+        const bool alternates = (frame >= 5 && frame <= 9) || (frame >= 19 && frame <= 29);
+        CHECK(short_seq[std::size_t(frame)] == ((alternates && frame % 2 == 1) || (frame >= 35 && (frame - 35) % 2 == 0)));
+    }
+    // Never with M = 1, without planning ahead, under a quality target, or where the camera moves every frame.
+    for (const bool reuses : reuse_sequence(s, sampling_mode{true, 8.0, true, 1, 19}, 80)) CHECK_FALSE(reuses);
+    for (const bool reuses : reuse_sequence(s, sampling_mode{true, 8.0, false, 4, 19}, 80)) CHECK_FALSE(reuses);
+    for (const bool reuses : reuse_sequence(s, sampling_mode{false, 1e-4, false, 4, 19}, 80)) CHECK_FALSE(reuses);
+    for (const bool reuses : reuse_sequence(load_scene_argument("moving"), budget, 60)) CHECK_FALSE(reuses);  // moves to 59
+}
+
 TEST_CASE("a burley pass that plans the next frame leaves every image, count and alpha as the samples pass would, bit for bit", "[image-files]") {
     emcv::gl::context ctx = emcv::test::context_or_skip();
     emcv::gl::debug_messenger messenger;
@@ -146,6 +222,7 @@ TEST_CASE("a burley pass that plans the next frame leaves every image, count and
         planned.height = 32;
         add_define(planned.defines, "EMCV_HISTORY_SPP_BUDGET=4");
         add_define(planned.defines, "EMCV_HISTORY_BLOCK=" + std::to_string(block));
+        add_define(planned.defines, "EMCV_HISTORY_UPDATE_PERIOD=1");  // every frame updates (reuse: the test below)
         render_options unplanned = planned;
         add_define(unplanned.defines, "EMCV_HISTORY_PLAN_AHEAD=0");
         renderer a(s, m, planned), b(s, m, unplanned);
@@ -168,6 +245,68 @@ TEST_CASE("a burley pass that plans the next frame leaves every image, count and
             CHECK(a.cv_alpha().pixels == b.cv_alpha().pixels);
         }
         CHECK(planned_frames == 34 - 5);  // all but frame 0 and the moving frames 11-14
+    }
+    CHECK(messenger.error_count() == 0);
+}
+
+namespace {
+
+/// The history as read back, flattened (a then b per texel): equal bit for bit where the floats are equal.
+std::vector<float> history_values(renderer& r) {
+    std::vector<float> out;
+    for (const adaptive::texel& t : r.adaptive_history()->read())
+        out.insert(out.end(), {t.a.x, t.a.y, t.a.z, t.a.w, t.b.x, t.b.y});
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("a frame that reuses the plan samples as the updating frame would and leaves the history and the budget as they were", "[image-files]") {
+    emcv::gl::context ctx = emcv::test::context_or_skip();
+    emcv::gl::debug_messenger messenger;
+    const scene s = still_move_still();  // still at frames 0-9
+    for (const method& m : {method{method::kind::cv, 0}, method{method::kind::spvg, 0}, method{method::kind::cv_notex, 0}}) {
+        INFO(m.name());
+        render_options every;
+        every.width = 48;
+        every.height = 32;
+        // eta 0.5 and B = 4: 4 learning updates (2 ln 4 / ln 2 = 4), frames 0-3; then frames 4-6 reuse, 7 updates.
+        add_define(every.defines, "EMCV_HISTORY_SPP_BUDGET=4");
+        add_define(every.defines, "EMCV_HISTORY_ETA_EMCM=0.5");
+        add_define(every.defines, "EMCV_HISTORY_ETA_MOVING=0.5");
+        render_options amortized = every;
+        add_define(amortized.defines, "EMCV_HISTORY_UPDATE_PERIOD=4");
+        REQUIRE(sampling_mode_of(amortized.defines).learning_updates == 4);
+        renderer a(s, m, amortized), b(s, m, every);
+        frame_planner listing(s, m, amortized.width, amortized.height, amortized.resolve, sampling_mode_of(amortized.defines));
+        std::vector<float> before = history_values(a);
+        emcv::port::EmcvBudgetBlock last_budget = a.adaptive_history()->read_budget();
+        for (int frame = 0; frame < 10; ++frame) {
+            INFO("frame " << frame);
+            a.render(frame);
+            b.render(frame);
+            listing.plan(frame);
+            CHECK(listing.reuses_plan() == (frame >= 4 && frame != 7));
+            const std::vector<float> after = history_values(a);
+            const emcv::port::EmcvBudgetBlock budget = a.adaptive_history()->read_budget();
+            if (listing.reuses_plan()) {
+                // no update, no planning, no solve: the history and lambda as the last update left them
+                CHECK(after == before);
+                CHECK(budget.solves == last_budget.solves);
+                CHECK(budget.lambda == last_budget.lambda);
+            } else {
+                CHECK(after != before);
+                CHECK(budget.solves > last_budget.solves);
+            }
+            before = after;
+            last_budget = budget;
+            // Up to the first frame that reuses the plan, both sample with the same plan: the same counts and
+            // image, bit for bit (the frame before planned it either way).
+            if (frame <= 4) {
+                CHECK(a.sample_counts().pixels == b.sample_counts().pixels);
+                CHECK(a.linear().pixels == b.linear().pixels);
+            }
+        }
     }
     CHECK(messenger.error_count() == 0);
 }

@@ -75,6 +75,11 @@ history::history(const method& m, int width, int height, program_cache& programs
         solve_program_ = &programs_->compute("adaptive/budget_solve.comp.glsl");
     }
     burley_program_ = &programs_->compute("render/sss_burley.comp.glsl", defines_);
+    // The variants a budget's frames switch between are built now, not on the frame that first takes one: a
+    // still view's second frame, or its first frame that reuses a plan, would carry a shader build.
+    const sampling_mode sampling = sampling_mode_of(programs.base().defines);
+    if (budget_mode_ && sampling.plan_ahead) use_burley(burley_variant::plans_next);
+    if (budget_mode_ && sampling.update_period > 1) use_burley(burley_variant::reuses_plan);
     // Zeroed: no histogram yet (the first frame's pixels have no variance and take B), lambda 0.
     budget_ = gl::buffer::create();
     const emcv::port::EmcvBudgetBlock empty{};
@@ -133,17 +138,25 @@ void history::bind_for_update() const {
     glBindImageTexture(EMCV_ADAPTIVE_IMG_SAMPLES, samples_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
 }
 
-void history::use_burley(bool plans_next) {
-    if (plans_next) {
-        if (!budget_mode_) throw std::logic_error("adaptive history: only a budget plans the next frame's counts");
-        if (burley_plan_next_program_ == nullptr) {
-            program_cache::defines plans_next_defines = defines_;
-            plans_next_defines.emplace_back("EMCV_ADAPTIVE_PLAN_NEXT", "1");
-            burley_plan_next_program_ = &programs_->compute("render/sss_burley.comp.glsl", plans_next_defines);
+void history::use_burley(burley_variant variant) {
+    // The budget's variants are built on first use, with their define added to the method's.
+    const auto variant_program = [&](const gl::program*& program, const char* define, const char* what) {
+        if (!budget_mode_) throw std::logic_error(std::string("adaptive history: only a budget ") + what);
+        if (program == nullptr) {
+            program_cache::defines variant_defines = defines_;
+            variant_defines.emplace_back(define, "1");
+            program = &programs_->compute("render/sss_burley.comp.glsl", variant_defines);
         }
-        burley_plan_next_program_->use();
-    } else {
-        burley_program_->use();
+        return program;
+    };
+    switch (variant) {
+        case burley_variant::updates: burley_program_->use(); break;
+        case burley_variant::plans_next:
+            variant_program(burley_plan_next_program_, "EMCV_ADAPTIVE_PLAN_NEXT", "plans the next frame's counts")->use();
+            break;
+        case burley_variant::reuses_plan:
+            variant_program(burley_reuse_program_, "EMCV_ADAPTIVE_REUSE_PLAN", "reuses a plan")->use();
+            break;
     }
     bind_previous();
     bind_for_update();

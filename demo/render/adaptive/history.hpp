@@ -42,6 +42,13 @@ struct texel {
     glm::vec2 b{0.0f};
 };
 
+/// The method's burley program on a frame (use_burley).
+enum class burley_variant {
+    updates,      ///< samples, then pushes (f, G) into the history
+    plans_next,   ///< budget mode: also plans the next frame's counts (EMCV_ADAPTIVE_PLAN_NEXT)
+    reuses_plan,  ///< budget mode: samples with the last update's plan, no update, no planning (EMCV_ADAPTIVE_REUSE_PLAN)
+};
+
 class history {
 public:
     /// Allocates the textures of the method's history layout (cleared: every pixel starts fresh) and takes
@@ -80,8 +87,9 @@ public:
     /// previous G-buffer the caller binds as for record_samples), this frame's history images, the samples image
     /// and the budget block. `plans_next` (budget mode): the program built with EMCV_ADAPTIVE_PLAN_NEXT (made on
     /// first use), which after its update also plans the next frame's counts as that frame's samples pass would
-    /// for the same view (sss_burley.comp.glsl, plan_next_frame).
-    void use_burley(bool plans_next = false);
+    /// for the same view (sss_burley.comp.glsl, plan_next_frame); `reuses_plan` (budget mode): the one built with
+    /// EMCV_ADAPTIVE_REUSE_PLAN, which samples with the counts the last update planned and writes no history.
+    void use_burley(burley_variant variant = burley_variant::updates);
     /// Start of every frame of the method: `in_place` when the last frame's burley pass planned this one
     /// (frame_planner::planned_by_previous): no samples pass copies the history into this frame's textures, so
     /// this frame's are the newest, updated where they are.
@@ -129,6 +137,7 @@ private:
     const gl::program* samples_program_ = nullptr;
     const gl::program* burley_program_ = nullptr;
     const gl::program* burley_plan_next_program_ = nullptr;
+    const gl::program* burley_reuse_program_ = nullptr;
     const gl::program* solve_program_ = nullptr;
     gl::buffer budget_;  // EmcvBudgetBlock: allocated in every mode (the passes declare it), used in budget mode
     std::array<gl::texture_2d, 2> a_, b_;  // ping-pong: [current_] is this frame's

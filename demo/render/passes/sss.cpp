@@ -41,14 +41,16 @@ void sss_adaptive_samples(const frame_context& c) {
     c.history->record_samples();
 }
 
-void sss_burley(const frame_context& c, bool plans_next) {
+void sss_burley(const frame_context& c, bool plans_next, bool reuses_plan) {
     const gpu_resources& r = c.res;
     // An adaptive method's burley program takes N per pixel (under a quality target it plans N itself from
     // the reprojected history) and updates the history it binds (the adaptive methods always have one:
     // frame_context's note above); it reads its own output back (read-write).
     if (c.history) {
         bind_previous_gbuffer(r);
-        c.history->use_burley(plans_next);
+        c.history->use_burley(reuses_plan ? adaptive::burley_variant::reuses_plan
+                              : plans_next ? adaptive::burley_variant::plans_next
+                                           : adaptive::burley_variant::updates);
     } else {
         c.programs.burley.use();
     }

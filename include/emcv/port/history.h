@@ -55,6 +55,15 @@ EMCV_PORT_BEGIN
 #ifndef EMCV_HISTORY_PLAN_AHEAD
 #define EMCV_HISTORY_PLAN_AHEAD 1
 #endif
+/// Budget mode with EMCV_HISTORY_PLAN_AHEAD: while the view and the lights stay still, the history is updated
+/// (and the next frames planned) on one frame in M = EMCV_HISTORY_UPDATE_PERIOD; the frames between sample with
+/// the counts that update planned and record nothing else. After a change of view or lights (and at the start)
+/// every frame updates until the history has taken 1 / eta updates, the EMCM's memory (docs/renderer.md,
+/// "Updating one frame in M"). 1 updates every frame. A renderer's choice of passes, not a formula: no function
+/// of the port reads it. Range: [1, 16] integer.
+#ifndef EMCV_HISTORY_UPDATE_PERIOD
+#define EMCV_HISTORY_UPDATE_PERIOD 8
+#endif
 
 /// Quality-target mode: the variance of a pixel's output (gamma-space luminance) the count aims at; SPVG's
 /// 1e-4. Range: (0, 1].
