@@ -68,7 +68,7 @@ COMMANDS = [
             "printed tables (docs/notebook/2026-12-07-frame-resolve-effect.md)"),
     Command("jitter-aa", "jitter_aa.py", "the resolve with and without jitter against an anti-aliased reference",
             "printed tables (docs/frame.md, \"Jitter and an anti-aliased reference\")"),
-    Command("block-size", "block_size.py", "the statistics' grain EMCV_HISTORY_BLOCK at equal samples",
+    Command("block-size", "block_size.py", "the statistics' grain EMCV_HISTORY_BLOCK (or --tunable) at equal samples",
             "a printed table (docs/notebook/2026-12-07-renderer-block-size.md)"),
     Command("warp-efficiency", "warp_efficiency.py", "warp efficiency of the SSS sampling loop; --steady: the "
             "work's spread from frame to frame", "printed tables (docs/notebook/2026-12-07-renderer-steady-work.md)"),
