@@ -44,7 +44,6 @@ frame_planner::frame_planner(const scene& s, const method& m, int width, int hei
     : s_(&s), m_(m), width_(width), height_(height), resolve_(resolve), budget_(sampling.budget),
       plan_ahead_(sampling.budget && sampling.plan_ahead),
       update_period_(plan_ahead_ ? sampling.update_period : 1), learning_updates_(sampling.learning_updates),
-      memory_updates_(sampling.memory_updates),
       jitter_(jitter && resolve == resolve_mode::taa && row_of(m).resolves()), casters_(shadow_casters(s)) {
     for (const object& o : s.objects)
         if (s.materials.at(static_cast<std::size_t>(o.material)).scatters()) sss_bounds_.push_back(object_bounds(s, o));
@@ -110,12 +109,8 @@ const std::vector<planned_pass>& frame_planner::plan(int frame, const std::vecto
                 const bool same_next = plan_ahead_ && !jitter_ && same_camera(camera_matrices(s.view, frame + 1, width_, height_), v);
                 // Updating one frame in M: a still view (planned by the previous frame) under still lights, whose
                 // history has learnt since the last change, reuses the last update's plan on M - 1 frames of M.
-                // Fresh histories hold no old variance to forget: they need their memory's updates only.
-                if (histories_fresh_ || !planned_by_previous_ || lights_ != previous_lights_) {
-                    updates_since_change_ = 0;
-                    learning_target_ = histories_fresh_ ? memory_updates_ : learning_updates_;
-                }
-                reuses_plan_ = planned_by_previous_ && updates_since_change_ >= learning_target_ &&
+                if (!planned_by_previous_ || lights_ != previous_lights_) updates_since_change_ = 0;
+                reuses_plan_ = planned_by_previous_ && updates_since_change_ >= learning_updates_ &&
                                reuses_since_update_ + 1 < update_period_;
                 // A frame that reuses the plan leaves it valid for the next frame of the same view.
                 passes_.push_back({pass_id::sss_burley, 0, 0, same_next && !reuses_plan_, reuses_plan_});
@@ -131,7 +126,6 @@ const std::vector<planned_pass>& frame_planner::plan(int frame, const std::vecto
         }
     }
     if (!scatters_) planned_frame_ = -1;  // no burley pass planned the next frame, and no history was updated here
-    histories_fresh_ = !scatters_;        // the renderer restarts every history after a frame without SSS passes
     passes_.push_back({pass_id::composite, 0, 0});
     // The reference is the converged image an engine's resolve would converge to: it is compared raw.
     if (resolve_ == resolve_mode::taa && row_of(m_).resolves()) passes_.push_back({pass_id::resolve, 0, 0});

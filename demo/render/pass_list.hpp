@@ -88,10 +88,8 @@ public:
     /// samples pass: the data of a still view allow the fusion. Any other frame records it.
     /// With `sampling.update_period` M > 1, a frame planned by the previous one whose lights (each one's radiance
     /// times `light_scale`) are those of the previous frame reuses that plan (planned_pass::reuses_plan) once the
-    /// history has taken `sampling.learning_updates` updates since the last change of view or lights
-    /// (`sampling.memory_updates` since a start from fresh histories: the first frame, or the first after a frame
-    /// without SSS passes), unless M - 1 frames have reused it since the last update: the history is updated on one
-    /// frame in M.
+    /// history has taken `sampling.learning_updates` updates since the last change of view or lights, unless M - 1
+    /// frames have reused it since the last update: the history is updated on one frame in M.
     /// `jitter`: the camera moves by taa_jitter(frame) under resolve taa (render_options::jitter; never the
     /// reference's).
     frame_planner(const scene& s, const method& m, int width, int height, resolve_mode resolve,
@@ -133,7 +131,6 @@ private:
     bool plan_ahead_;
     int update_period_;    ///< sampling_mode::update_period
     int learning_updates_;  ///< sampling_mode::learning_updates
-    int memory_updates_;    ///< sampling_mode::memory_updates
     bool jitter_;
     std::vector<bounding_sphere> sss_bounds_;
     std::vector<std::size_t> casters_;
@@ -146,8 +143,6 @@ private:
     bool planned_by_previous_ = false;
     bool reuses_plan_ = false;
     int updates_since_change_ = 0;  ///< history updates since the last change of view or lights
-    int learning_target_ = 0;       ///< the updates that change needs: learning_updates_ or memory_updates_
-    bool histories_fresh_ = true;   ///< the next frame's histories start fresh (no frame with SSS passes before)
     int reuses_since_update_ = 0;   ///< frames that reused the plan since the last update
 };
 

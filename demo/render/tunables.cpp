@@ -189,10 +189,9 @@ sampling_mode sampling_mode_of(const define_list& defines) {
     if (budget > 0.0) {
         const double eta = std::min(tunable_value(defines, "EMCV_HISTORY_ETA_MOVING"), tunable_value(defines, "EMCV_HISTORY_ETA_EMCM"));
         return {true, budget, plan_ahead, plan_ahead ? period : 1,
-                learning_updates(eta, budget, tunable_value(defines, "EMCV_HISTORY_N_MIN")),
-                learning_updates(eta, 1.0, 1.0)};
+                learning_updates(eta, budget, tunable_value(defines, "EMCV_HISTORY_N_MIN"))};
     }
-    return {false, tunable_value(defines, "EMCV_HISTORY_TARGET"), false, 1, 0, 0};
+    return {false, tunable_value(defines, "EMCV_HISTORY_TARGET"), false, 1, 0};
 }
 
 }  // namespace emcv::demo

@@ -64,9 +64,6 @@ struct sampling_mode {
     /// Budget mode: the updates a history takes after a change of view or lights before frames may reuse a plan
     /// (learning_updates of the slower of EMCV_HISTORY_ETA_MOVING and EMCV_HISTORY_ETA_EMCM, B and N_MIN).
     int learning_updates = 0;
-    /// Budget mode: the same after a start from fresh histories, which hold no old variance to forget: the
-    /// memory, ceil(1 / eta) of the slower weight.
-    int memory_updates = 0;
     /// "budget 8 spp" or "target variance 0.0001": what metrics and summaries print.
     std::string text() const;
 };

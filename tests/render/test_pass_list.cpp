@@ -144,7 +144,6 @@ TEST_CASE("learning_updates: enough updates for a pixel gone dark to fall from B
     // The renderer's sampling mode takes the slower weight of the two.
     define_list defines{{"EMCV_HISTORY_SPP_BUDGET", "8"}, {"EMCV_HISTORY_ETA_MOVING", "0.1"}};
     CHECK(sampling_mode_of(defines).learning_updates == 40);
-    CHECK(sampling_mode_of(defines).memory_updates == 10);  // fresh histories: the memory 1 / 0.1
     defines = {{"EMCV_HISTORY_SPP_BUDGET", "8"}, {"EMCV_HISTORY_ETA_EMCM", "0.1"}};
     CHECK(sampling_mode_of(defines).learning_updates == 40);
 }
@@ -177,52 +176,34 @@ std::vector<bool> reuse_sequence(const scene& s, const sampling_mode& sampling, 
 TEST_CASE("a budget updates the history on one frame in M where view and lights hold, after the learning updates") {
     // light-off: the camera holds at frames 0-9 and from 14 on (moving in at 11-14), the key light goes off at 30.
     const scene s = still_move_still();
-    sampling_mode budget{true, 8.0, true, 4, 19, 5};
+    sampling_mode budget{true, 8.0, true, 4, 19};
     const std::vector<bool> seq = reuse_sequence(s, budget, 80);
-    // Every change restarts the count of updates: frame 0 (fresh histories: 5 updates, frames 0-4; then 5-7 reuse,
-    // 8 updates, 9-10 reuse), the camera at 11-14 (frame 14 the last one moved in: 19 updates), the light at 30.
-    // 19 updates from frame 30 are frames 30-48; from 49 on three frames of four reuse the plan.
-    const auto expected = [](int frame) {
-        return (frame >= 5 && frame <= 10 && frame != 8) || (frame >= 49 && (frame - 49) % 4 != 3);
-    };
+    // Every change restarts the count of updates: frame 0, the camera at 11-14 (frame 14 the last one moved in),
+    // the light at 30. 19 updates from frame 30 are frames 30-48; from 49 on three frames of four reuse the plan.
     for (int frame = 0; frame < 80; ++frame) {
         INFO("frame " << frame);
-        CHECK(seq[std::size_t(frame)] == expected(frame));
+        CHECK(seq[std::size_t(frame)] == (frame >= 49 && (frame - 49) % 4 != 3));
     }
     // The window's toggles change a light too: scaled from frame 60 on, the count restarts there.
     const std::vector<bool> toggled = reuse_sequence(s, budget, 100, 60, {0.5f, 0.5f, 0.5f, 0.5f});
     for (int frame = 0; frame < 100; ++frame) {
         INFO("frame " << frame);
-        CHECK(toggled[std::size_t(frame)] == ((expected(frame) && frame < 60) || (frame >= 79 && (frame - 79) % 4 != 3)));
+        CHECK(toggled[std::size_t(frame)] == ((frame >= 49 && frame < 60 && (frame - 49) % 4 != 3) ||
+                                              (frame >= 79 && (frame - 79) % 4 != 3)));
     }
     // A shorter learning and another period, one frame in 2: the still stretches before the switch learn too.
     // Frames 0-4 update, 5-9 alternate; 10 updates (the frame after a reuse); 11-14 move in; 14-18 update, 19-29
     // alternate; the switch at 30, and from 35 on.
-    const std::vector<bool> short_seq = reuse_sequence(s, sampling_mode{true, 8.0, true, 2, 5, 5}, 50);
+    const std::vector<bool> short_seq = reuse_sequence(s, sampling_mode{true, 8.0, true, 2, 5}, 50);
     for (int frame = 0; frame < 50; ++frame) {
         INFO("frame " << frame);
         const bool alternates = (frame >= 5 && frame <= 9) || (frame >= 19 && frame <= 29);
         CHECK(short_seq[std::size_t(frame)] == ((alternates && frame % 2 == 1) || (frame >= 35 && (frame - 35) % 2 == 0)));
     }
-    // The camera looking away at frames 11-12 (no SSS pass) and back from 13 on: the renderer restarts every
-    // history at 13, which then needs 5 updates only (13-17); 18-20 reuse, 21 updates, 22-24 reuse, 25 updates,
-    // 26-28 reuse, 29 updates; the light at 30 as above.
-    scene away = s;
-    const glm::vec3 eye = away.view.position, target = away.view.target;
-    away.view.keys = {{0, eye, target}, {10, eye, target}, {11, eye, 2.0f * eye - target}, {12, eye, 2.0f * eye - target},
-                      {13, eye, target}};
-    frame_planner away_planner(away, method{method::kind::cv, 0}, 64, 48, resolve_mode::taa, budget);
-    for (int frame = 0; frame < 80; ++frame) {
-        INFO("frame " << frame);
-        away_planner.plan(frame);
-        CHECK(away_planner.scatters() == (frame < 11 || frame > 12));
-        const bool after_away = frame >= 18 && frame <= 29 && (frame - 18) % 4 != 3;
-        CHECK(away_planner.reuses_plan() == ((frame <= 10 && expected(frame)) || after_away || (frame >= 49 && (frame - 49) % 4 != 3)));
-    }
     // Never with M = 1, without planning ahead, under a quality target, or where the camera moves every frame.
-    for (const bool reuses : reuse_sequence(s, sampling_mode{true, 8.0, true, 1, 19, 5}, 80)) CHECK_FALSE(reuses);
-    for (const bool reuses : reuse_sequence(s, sampling_mode{true, 8.0, false, 4, 19, 5}, 80)) CHECK_FALSE(reuses);
-    for (const bool reuses : reuse_sequence(s, sampling_mode{false, 1e-4, false, 4, 19, 5}, 80)) CHECK_FALSE(reuses);
+    for (const bool reuses : reuse_sequence(s, sampling_mode{true, 8.0, true, 1, 19}, 80)) CHECK_FALSE(reuses);
+    for (const bool reuses : reuse_sequence(s, sampling_mode{true, 8.0, false, 4, 19}, 80)) CHECK_FALSE(reuses);
+    for (const bool reuses : reuse_sequence(s, sampling_mode{false, 1e-4, false, 4, 19}, 80)) CHECK_FALSE(reuses);
     for (const bool reuses : reuse_sequence(load_scene_argument("moving"), budget, 60)) CHECK_FALSE(reuses);  // moves to 59
 }
 
@@ -289,14 +270,13 @@ TEST_CASE("a frame that reuses the plan samples as the updating frame would and 
         render_options every;
         every.width = 48;
         every.height = 32;
-        // eta 0.5: fresh histories need 2 updates (1 / eta), frames 0-1; then frames 2-4 reuse, 5 updates, 6-8
-        // reuse, 9 updates (after a change B = 4 would need 2 ln 4 / ln 2 = 4).
+        // eta 0.5 and B = 4: 4 learning updates (2 ln 4 / ln 2 = 4), frames 0-3; then frames 4-6 reuse, 7 updates.
         add_define(every.defines, "EMCV_HISTORY_SPP_BUDGET=4");
         add_define(every.defines, "EMCV_HISTORY_ETA_EMCM=0.5");
         add_define(every.defines, "EMCV_HISTORY_ETA_MOVING=0.5");
         render_options amortized = every;
         add_define(amortized.defines, "EMCV_HISTORY_UPDATE_PERIOD=4");
-        REQUIRE(sampling_mode_of(amortized.defines).memory_updates == 2);
+        REQUIRE(sampling_mode_of(amortized.defines).learning_updates == 4);
         renderer a(s, m, amortized), b(s, m, every);
         frame_planner listing(s, m, amortized.width, amortized.height, amortized.resolve, sampling_mode_of(amortized.defines));
         std::vector<float> before = history_values(a);
@@ -306,7 +286,7 @@ TEST_CASE("a frame that reuses the plan samples as the updating frame would and 
             a.render(frame);
             b.render(frame);
             listing.plan(frame);
-            CHECK(listing.reuses_plan() == (frame >= 2 && frame != 5 && frame != 9));
+            CHECK(listing.reuses_plan() == (frame >= 4 && frame != 7));
             const std::vector<float> after = history_values(a);
             const emcv::port::EmcvBudgetBlock budget = a.adaptive_history()->read_budget();
             if (listing.reuses_plan()) {
@@ -322,7 +302,7 @@ TEST_CASE("a frame that reuses the plan samples as the updating frame would and 
             last_budget = budget;
             // Up to the first frame that reuses the plan, both sample with the same plan: the same counts and
             // image, bit for bit (the frame before planned it either way).
-            if (frame <= 2) {
+            if (frame <= 4) {
                 CHECK(a.sample_counts().pixels == b.sample_counts().pixels);
                 CHECK(a.linear().pixels == b.linear().pixels);
             }
