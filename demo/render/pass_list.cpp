@@ -113,7 +113,10 @@ const std::vector<planned_pass>& frame_planner::plan(int frame, const std::vecto
                 reuses_plan_ = planned_by_previous_ && updates_since_change_ >= learning_updates_ &&
                                reuses_since_update_ + 1 < update_period_;
                 // A frame that reuses the plan leaves it valid for the next frame of the same view.
-                passes_.push_back({pass_id::sss_burley, 0, 0, same_next && !reuses_plan_, reuses_plan_});
+                passes_.push_back({pass_id::sss_burley, 0, 0,
+                                   reuses_plan_ ? burley_variant::reuses_plan
+                                   : same_next  ? burley_variant::plans_next
+                                                : burley_variant::updates});
                 if (reuses_plan_) {
                     ++reuses_since_update_;
                 } else {

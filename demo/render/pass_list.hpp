@@ -49,20 +49,25 @@ std::string_view pass_base_name(pass_id id);
 /// The passes counted in frame_stats::sss_ms.
 bool is_sss_pass(pass_id id);
 
+/// An adaptive method's burley program on a frame (planned_pass::burley; adaptive::history::use_burley).
+enum class burley_variant {
+    updates,      ///< samples, then pushes (f, G) into the history
+    /// budget mode, the next frame showing this frame's view (frame_planner::plan): also plans that frame's counts
+    /// (EMCV_ADAPTIVE_PLAN_NEXT), so that frame records no sss-adaptive-samples
+    plans_next,
+    /// budget mode, a frame between two updates of a still view under still lights (sampling_mode::update_period):
+    /// samples with the counts the last update planned, neither updates the history nor plans
+    /// (EMCV_ADAPTIVE_REUSE_PLAN; no samples pass either)
+    reuses_plan,
+};
+
 struct planned_pass {
     pass_id id = pass_id::gbuffer;
     std::size_t light = 0;  ///< shadow: the light's index in the scene
     std::size_t layer = 0;  ///< shadow: its layer in the shadow-map array
-    /// sss_burley of an adaptive method in budget mode: it also plans the next frame's counts (that frame shows
-    /// this frame's view: frame_planner::plan), so that frame records no sss-adaptive-samples.
-    bool plans_next = false;
-    /// sss_burley of an adaptive method in budget mode, on a frame between two updates of a still view under still
-    /// lights (sampling_mode::update_period): it samples with the counts the last update planned and neither
-    /// updates the history nor plans (no samples pass either).
-    bool reuses_plan = false;
+    burley_variant burley = burley_variant::updates;  ///< sss_burley of an adaptive method: its program
     bool operator==(const planned_pass& o) const {
-        return id == o.id && light == o.light && layer == o.layer && plans_next == o.plans_next &&
-               reuses_plan == o.reuses_plan;
+        return id == o.id && light == o.light && layer == o.layer && burley == o.burley;
     }
 };
 
@@ -84,10 +89,10 @@ public:
     /// and the burley program plans N itself (no pass more than burley-N's).
     /// Under a budget with `sampling.plan_ahead`, a frame whose next frame (frame + 1) shows the same camera
     /// (view and projection bit for bit, so the same G-buffer: objects do not move in the scene model) plans that
-    /// frame's counts in its burley pass (planned_pass::plans_next), and that frame, planned next, records no
+    /// frame's counts in its burley pass (burley_variant::plans_next), and that frame, planned next, records no
     /// samples pass: the data of a still view allow the fusion. Any other frame records it.
     /// With `sampling.update_period` M > 1, a frame planned by the previous one whose lights (each one's radiance
-    /// times `light_scale`) are those of the previous frame reuses that plan (planned_pass::reuses_plan) once the
+    /// times `light_scale`) are those of the previous frame reuses that plan (burley_variant::reuses_plan) once the
     /// history has taken `sampling.learning_updates` updates since the last change of view or lights, unless M - 1
     /// frames have reused it since the last update: the history is updated on one frame in M.
     /// `jitter`: the camera moves by taa_jitter(frame) under resolve taa (render_options::jitter; never the
@@ -111,11 +116,11 @@ public:
         return scatters_ && samples_randomly(m_) && resolve_ == resolve_mode::taa && !jitter_ &&
                row_of(m_).resolves();
     }
-    /// Whether the last planned frame's counts were planned by the frame before it (its burley pass had
-    /// plans_next): it records no samples pass, and its history is updated where that frame left it (in place,
+    /// Whether the last planned frame's counts were planned by the frame before it (its burley pass was
+    /// burley_variant::plans_next, or reused a plan of the same view): it records no samples pass, and its history is updated where that frame left it (in place,
     /// adaptive::history::begin_frame).
     bool planned_by_previous() const { return planned_by_previous_; }
-    /// Whether the last planned frame's burley pass reuses the last update's plan (planned_pass::reuses_plan).
+    /// Whether the last planned frame's burley pass reuses the last update's plan (burley_variant::reuses_plan).
     bool reuses_plan() const { return reuses_plan_; }
     /// The camera of the last planned frame (the renderer uploads it).
     const view_matrices& view() const { return view_; }

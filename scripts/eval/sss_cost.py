@@ -7,8 +7,8 @@ Runs emcv-eval (methods side by side, frame by frame) RUNS times for each build 
 interleaved run by run so that the machine's load hits them alike, and prints one markdown row per build and
 method: the median over runs of the method's mean SSS time over frames FIRST.. (sss_ms, the sum of the sss-*
 passes; the mean, because a budget's frames that reuse a plan cost less than the frame that updates:
-docs/renderer.md, "Updating one frame in M"), its ratio to the baseline's (the ratio is taken within each run, then the median over runs), its mean
-samples per SSS pixel and the ratio of those. Under --spp-budget B the baseline is burley-B; under
+docs/renderer.md, "Updating one frame in M"), its ratio to the baseline's (the ratio is taken within each run, then
+the median over runs), its mean samples per SSS pixel and the ratio of those. Under --spp-budget B the baseline is burley-B; under
 --target-variance V it is spvg, and --first/--last pick the window (e.g. the 30 frames after a switch).
 
 With --variant LABEL=NAME=VALUE[,NAME=VALUE...] (repeatable; LABEL= alone for none) the rows are the first build

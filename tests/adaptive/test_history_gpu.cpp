@@ -722,7 +722,7 @@ TEST_CASE("a poisoned history texel (NaN, Inf, negative variance) is reset and n
 TEST_CASE("only a budget's burley pass plans the next frame or reuses a plan: asked under a quality target, the history refuses by name") {
     emcv::gl::context ctx = emcv::test::context_or_skip();
     emcv::gl::debug_messenger messenger;
-    using emcv::demo::adaptive::burley_variant;
+    using emcv::demo::burley_variant;
     history quality(emcv::demo::method{kind::cv, 0}, width, height, shader_options(), emcv_test::shader_dir());
     REQUIRE_FALSE(quality.budget_mode());
     CHECK_THROWS_WITH(quality.use_burley(burley_variant::plans_next), Catch::Matchers::ContainsSubstring("only a budget plans"));

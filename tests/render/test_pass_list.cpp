@@ -77,8 +77,8 @@ std::vector<std::pair<bool, bool>> plan_sequence(const scene& s, const method& m
         bool samples = false, plans = false;
         for (const planned_pass& p : planner.plan(frame)) {
             samples = samples || p.id == pass_id::sss_adaptive_samples;
-            if (p.id == pass_id::sss_burley) plans = p.plans_next;
-            CHECK((p.plans_next && p.id != pass_id::sss_burley) == false);
+            if (p.id == pass_id::sss_burley) plans = p.burley == burley_variant::plans_next;
+            CHECK((p.burley != burley_variant::updates && p.id != pass_id::sss_burley) == false);
         }
         CHECK(planner.planned_by_previous() == (is_adaptive(m) && sampling.budget && !samples && planner.scatters()));
         out.emplace_back(samples, plans);
@@ -161,8 +161,7 @@ std::vector<bool> reuse_sequence(const scene& s, const sampling_mode& sampling, 
         for (const planned_pass& p : planner.plan(frame, frame >= scaled_from ? light_scale : std::vector<float>{})) {
             samples = samples || p.id == pass_id::sss_adaptive_samples;
             if (p.id != pass_id::sss_burley) continue;
-            reuses = p.reuses_plan;
-            CHECK_FALSE((p.reuses_plan && p.plans_next));  // a reused plan stays: nothing to plan
+            reuses = p.burley == burley_variant::reuses_plan;
         }
         CHECK(planner.reuses_plan() == reuses);
         if (reuses) CHECK_FALSE(samples);  // only a frame planned by the previous one reuses

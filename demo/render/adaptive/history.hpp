@@ -29,6 +29,7 @@
 #include "gl/image_io.hpp"
 #include "gl/program.hpp"
 #include "render/method.hpp"
+#include "render/pass_list.hpp"
 #include "render/program_cache.hpp"
 
 #include <emcv/port/budget.h>
@@ -40,13 +41,6 @@ namespace emcv::demo::adaptive {
 struct texel {
     glm::vec4 a{0.0f};
     glm::vec2 b{0.0f};
-};
-
-/// The method's burley program on a frame (use_burley).
-enum class burley_variant {
-    updates,      ///< samples, then pushes (f, G) into the history
-    plans_next,   ///< budget mode: also plans the next frame's counts (EMCV_ADAPTIVE_PLAN_NEXT)
-    reuses_plan,  ///< budget mode: samples with the last update's plan, no update, no planning (EMCV_ADAPTIVE_REUSE_PLAN)
 };
 
 class history {
@@ -85,10 +79,11 @@ public:
     /// Makes the method's burley program current and binds what it reads and updates besides the burley
     /// pass's own outputs: last frame's history (which a quality target's burley pass reprojects, through the
     /// previous G-buffer the caller binds as for record_samples), this frame's history images, the samples image
-    /// and the budget block. `plans_next` (budget mode): the program built with EMCV_ADAPTIVE_PLAN_NEXT (made on
-    /// first use), which after its update also plans the next frame's counts as that frame's samples pass would
-    /// for the same view (sss_burley.comp.glsl, plan_next_frame); `reuses_plan` (budget mode): the one built with
-    /// EMCV_ADAPTIVE_REUSE_PLAN, which samples with the counts the last update planned and writes no history.
+    /// and the budget block. `plans_next` (budget mode): the program built with EMCV_ADAPTIVE_PLAN_NEXT, which
+    /// after its update also plans the next frame's counts as that frame's samples pass would for the same view
+    /// (sss_burley.comp.glsl, plan_next_frame); `reuses_plan` (budget mode): the one built with
+    /// EMCV_ADAPTIVE_REUSE_PLAN, which samples with the counts the last update planned and writes no history. A
+    /// budget's variants are built with the history (the constructor), the others on first use.
     void use_burley(burley_variant variant = burley_variant::updates);
     /// Start of every frame of the method: `in_place` when the last frame's burley pass planned this one
     /// (frame_planner::planned_by_previous): no samples pass copies the history into this frame's textures, so

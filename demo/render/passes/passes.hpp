@@ -14,9 +14,8 @@ void gbuffer(const frame_context& c);
 void shadow(const frame_context& c, const planned_pass& p);
 void lighting(const frame_context& c);
 void sss_adaptive_samples(const frame_context& c);
-/// `plans_next`: an adaptive method's variant that also plans the next frame's counts (planned_pass::plans_next);
-/// `reuses_plan`: its variant that samples with the last update's plan alone (planned_pass::reuses_plan).
-void sss_burley(const frame_context& c, bool plans_next = false, bool reuses_plan = false);
+/// `variant`: an adaptive method's program (planned_pass::burley; the others have one).
+void sss_burley(const frame_context& c, burley_variant variant = burley_variant::updates);
 /// direction 0: horizontal, from the lighting; 1: vertical, from the horizontal pass's result.
 void sss_separable(const frame_context& c, int direction);
 void composite(const frame_context& c);

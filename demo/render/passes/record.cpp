@@ -12,7 +12,7 @@ void record(const planned_pass& p, const frame_context& c) {
         case pass_id::shadow: shadow(c, p); return;
         case pass_id::lighting: lighting(c); return;
         case pass_id::sss_adaptive_samples: sss_adaptive_samples(c); return;
-        case pass_id::sss_burley: sss_burley(c, p.plans_next, p.reuses_plan); return;
+        case pass_id::sss_burley: sss_burley(c, p.burley); return;
         case pass_id::sss_separable_h: sss_separable(c, 0); return;
         case pass_id::sss_separable_v: sss_separable(c, 1); return;
         case pass_id::composite: composite(c); return;

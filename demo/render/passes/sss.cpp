@@ -41,16 +41,14 @@ void sss_adaptive_samples(const frame_context& c) {
     c.history->record_samples();
 }
 
-void sss_burley(const frame_context& c, bool plans_next, bool reuses_plan) {
+void sss_burley(const frame_context& c, burley_variant variant) {
     const gpu_resources& r = c.res;
     // An adaptive method's burley program takes N per pixel (under a quality target it plans N itself from
     // the reprojected history) and updates the history it binds (the adaptive methods always have one:
     // frame_context's note above); it reads its own output back (read-write).
     if (c.history) {
         bind_previous_gbuffer(r);
-        c.history->use_burley(reuses_plan ? adaptive::burley_variant::reuses_plan
-                              : plans_next ? adaptive::burley_variant::plans_next
-                                           : adaptive::burley_variant::updates);
+        c.history->use_burley(variant);
     } else {
         c.programs.burley.use();
     }
@@ -58,7 +56,7 @@ void sss_burley(const frame_context& c, bool plans_next, bool reuses_plan) {
     glBindImageTexture(EMCV_RENDER_IMG_SSS_OUT, r.sss_out.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
     glDispatchComputeIndirect(0);
     // A burley pass that planned the next frame histogrammed that frame's variances: solved now, in this pass.
-    if (plans_next) c.history->solve_budget();
+    if (variant == burley_variant::plans_next) c.history->solve_budget();
     image_barrier_for_reads();
     // the stats block is read back after the frame; an adaptive history may be (history::read)
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);

@@ -58,8 +58,8 @@ EMCV_PORT_BEGIN
 /// Budget mode with EMCV_HISTORY_PLAN_AHEAD: while the view and the lights stay still, the history is updated
 /// (and the next frames planned) on one frame in M = EMCV_HISTORY_UPDATE_PERIOD; the frames between sample with
 /// the counts that update planned and record nothing else. After a change of view or lights (and at the start)
-/// every frame updates until the history has taken 1 / eta updates, the EMCM's memory (docs/renderer.md,
-/// "Updating one frame in M"). 1 updates every frame. A renderer's choice of passes, not a formula: no function
+/// every frame updates until a pixel gone dark has released its samples: max(1 / eta, 2 ln(B / N_MIN) /
+/// -ln(1 - eta)) updates, 19 at B = 8 (docs/renderer.md, "Updating one frame in M"). 1 updates every frame. A renderer's choice of passes, not a formula: no function
 /// of the port reads it. Range: [1, 16] integer.
 #ifndef EMCV_HISTORY_UPDATE_PERIOD
 #define EMCV_HISTORY_UPDATE_PERIOD 8
